@@ -1,0 +1,98 @@
+// The engine plugin ABI of the comparison harness: one small C interface per engine, loaded
+// from a shared module (dlopen) by name or path, so new engines need no harness rebuild.
+//
+// A plugin exports one symbol:
+//     const pool_engine_api *pool_engine_plugin(void);
+// and everything else goes through the returned table.
+#ifndef POOL_ENGINE_PLUGIN_H
+#define POOL_ENGINE_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Bumped on any incompatible change; the harness refuses other versions.
+#define POOL_ENGINE_ABI_VERSION 1
+
+/// Name of the symbol a plugin exports.
+#define POOL_ENGINE_ENTRY "pool_engine_plugin"
+
+/// Settings the harness passes to create().
+typedef struct pool_engine_config {
+	double dt;       ///< s, time step of time-stepped engines (ignored by event-driven ones)
+	uint64_t flags;  ///< reserved, 0
+} pool_engine_config;
+
+/// One ball as the engine sees it (state codes as pool_motion: 0 stationary, 1 spinning,
+/// 2 sliding, 3 rolling, 4 airborne, 6 pocketed, 7 off table).
+typedef struct pool_engine_ball {
+	int32_t id;       ///< scenario id
+	int32_t state;    ///< motion state code
+	double pos[3];    ///< m
+	double vel[3];    ///< m/s
+	double omega[3];  ///< rad/s
+} pool_engine_ball;
+
+/// Event kinds an engine reports (the subset of libpool's it can detect).
+typedef enum pool_engine_event_type {
+	POOL_ENGINE_EVENT_BALL_BALL = 4,    ///< first step of a new ball-ball contact
+	POOL_ENGINE_EVENT_BALL_CUSHION = 5, ///< first step of a new ball-cushion contact
+	POOL_ENGINE_EVENT_SLIDE_ROLL = 1,   ///< slip fell below the rolling threshold
+	POOL_ENGINE_EVENT_ROLL_STOP = 2,    ///< speed fell to zero / below the rest threshold
+	POOL_ENGINE_EVENT_POCKET = 7,       ///< ball fell into a pocket
+} pool_engine_event_type;
+
+/// An event as an engine detected it.
+typedef struct pool_engine_event {
+	double t;        ///< s
+	int32_t type;    ///< pool_engine_event_type
+	int32_t ball_a;  ///< id
+	int32_t ball_b;  ///< id of the other ball, or -1
+} pool_engine_event;
+
+/// Counters an engine reports.
+typedef struct pool_engine_stats {
+	int64_t steps;           ///< time steps taken (events for event-driven engines)
+	double max_penetration;  ///< m, deepest ball-ball or ball-cushion interpenetration seen
+	double sim_time;         ///< s, simulated time reached
+} pool_engine_stats;
+
+/// The function table a plugin returns. Every function returns 0 on success or a negative
+/// value with a message in err (create) / from last_error (the others).
+typedef struct pool_engine_api {
+	int abi_version;          ///< POOL_ENGINE_ABI_VERSION
+	const char *name;         ///< "libpool", "ode", "bullet", ...
+	const char *description;  ///< one line: engine, version, what it can't model
+	int event_driven;         ///< 1 for exact event-driven engines (dt ignored)
+
+	/// Builds the engine from a libpool-scenario/1 JSON document (strike applied as initial
+	/// velocities). NULL on failure with a message in err.
+	void *(*create)(const char *scenario_json, const pool_engine_config *config, char *err,
+	                size_t err_size);
+	/// Advances to absolute time t (s).
+	int (*advance)(void *engine, double t);
+	/// Advances until every ball is at rest or max_time is reached.
+	int (*run_to_rest)(void *engine, double max_time);
+	/// Writes up to capacity balls; returns how many the engine has.
+	int (*balls)(void *engine, pool_engine_ball *out, int capacity);
+	/// Events detected so far; returns how many (writes up to capacity).
+	int (*events)(void *engine, pool_engine_event *out, int capacity);
+	/// Counters so far.
+	void (*stats)(void *engine, pool_engine_stats *out);
+	/// Message of the last failure.
+	const char *(*last_error)(void *engine);
+	/// Frees the engine; NULL is a no-op.
+	void (*destroy)(void *engine);
+} pool_engine_api;
+
+/// The one exported entry point.
+typedef const pool_engine_api *(*pool_engine_entry_fn)(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,44 @@
+// libpool: the state of one ball.
+#ifndef POOL_BALL_H
+#define POOL_BALL_H
+
+#include <stdint.h>
+
+#include "pool/base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Motion state of a ball; values are stable (they travel in LCM messages).
+typedef enum pool_motion {
+	POOL_MOTION_STATIONARY = 0, ///< at rest on the cloth
+	POOL_MOTION_SPINNING = 1,   ///< on the cloth, only spin about z
+	POOL_MOTION_SLIDING = 2,    ///< on the cloth, contact point slips
+	POOL_MOTION_ROLLING = 3,    ///< on the cloth, no slip
+	POOL_MOTION_AIRBORNE = 4,   ///< in flight
+	POOL_MOTION_LINKED = 5,     ///< part of a LINK cluster (persistent contact)
+	POOL_MOTION_POCKETED = 6,   ///< fell into a pocket; no longer simulated
+	POOL_MOTION_OFF_TABLE = 7,  ///< left the table; no longer simulated
+} pool_motion;
+
+/// Lower-case name as in INTERFACES.md ("stationary", "sliding", ...).
+const char *pool_motion_name(pool_motion motion);
+
+/// Parses a name from pool_motion_name; returns -1 when unknown.
+int pool_motion_from_name(const char *name);
+
+/// One ball: identity, motion state and kinematics (world frame).
+typedef struct pool_ball_state {
+	int32_t id;         ///< user-chosen, unique in a simulation
+	pool_motion motion; ///< derived from the velocities when a ball is added
+	pool_vec3 pos;      ///< m, centre; z = R on the cloth
+	pool_vec3 vel;      ///< m/s
+	pool_vec3 omega;    ///< rad/s
+} pool_ball_state;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
