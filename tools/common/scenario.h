@@ -44,11 +44,15 @@ pool_result pool_scenario_setup(const pool_scenario *scenario, pool_sim **sim, p
 typedef struct pool_result_options {
 	double sample_dt; ///< s; > 0 adds "samples": trajectories sampled every sample_dt
 	bool pretty;      ///< indent the JSON
+	const pool_sim_def *def; ///< optional; when set, "table" and "ball_radius" are written too
 } pool_result_options;
 
 /// The libpool-result/1 document of a finished (or stopped) simulation, malloc'd, NUL-terminated;
 /// NULL on allocation failure. Byte-identical for identical simulations.
 char *pool_result_json(const pool_sim *sim, const pool_result_options *options);
+
+/// Name of a stop reason as written in "stats.stop_reason" ("rest", "max_time", ...).
+const char *pool_stop_reason_name(pool_stop_reason reason);
 
 #ifdef __cplusplus
 }

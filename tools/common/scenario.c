@@ -1,0 +1,506 @@
+// Parsing and validation of libpool-scenario/1 documents (INTERFACES.md). The JSON layer checks
+// syntax, types, unknown fields and number ranges; the physical rules (table and parameter
+// ranges, overlaps, off-table balls, strike limits) are libpool's own validators, whose messages
+// already name the field, so the rules live in one place.
+#include "scenario.h"
+
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define POOL_PI 3.14159265358979323846
+
+// Magnitude above which a number is rejected: nothing on a pool table is 1e9 m, s or rad/s, and
+// larger values only overflow the quartic coefficients.
+#define POOL_SCENARIO_MAX_ABS 1e9
+
+static const char *const scenario_format = "libpool-scenario/1";
+
+typedef struct parse_ctx {
+	char *err;
+	size_t err_size;
+} parse_ctx;
+
+static int fail(parse_ctx *ctx, const char *format, ...) {
+	if (ctx->err && ctx->err_size > 0) {
+		va_list args;
+		va_start(args, format);
+		vsnprintf(ctx->err, ctx->err_size, format, args);
+		va_end(args);
+	}
+	return -1;
+}
+
+// A libpool message normally starts with the field path ("params.mu_slide: ..."); when it does
+// not, prefix the path of the object we handed over.
+static int fail_lib(parse_ctx *ctx, const char *path, pool_result code, const pool_error *e) {
+	const char *message = e->message[0] ? e->message : pool_result_str(code);
+	size_t n = strlen(path);
+	if (strncmp(message, path, n) == 0 && (message[n] == '.' || message[n] == ':' || message[n] == '['))
+		return fail(ctx, "%s", message);
+	return fail(ctx, "%s: %s", path, message);
+}
+
+// Every key of obj must be one of allowed (NULL-terminated).
+static int check_fields(parse_ctx *ctx, json_t *obj, const char *path, const char *const *allowed) {
+	const char *key;
+	json_t *value;
+	json_object_foreach(obj, key, value) {
+		bool known = false;
+		for (const char *const *a = allowed; *a; ++a)
+			if (strcmp(key, *a) == 0)
+				known = true;
+		if (!known) {
+			if (path[0])
+				return fail(ctx, "%s.%s: unknown field", path, key);
+			return fail(ctx, "%s: unknown field", key);
+		}
+	}
+	return 0;
+}
+
+static int get_number(parse_ctx *ctx, json_t *value, const char *path, double *out) {
+	if (!json_is_number(value))
+		return fail(ctx, "%s: must be a number", path);
+	double x = json_number_value(value);
+	if (!isfinite(x))
+		return fail(ctx, "%s: must be a finite number", path);
+	if (fabs(x) > POOL_SCENARIO_MAX_ABS)
+		return fail(ctx, "%s: %g is too large (limit %g)", path, x, POOL_SCENARIO_MAX_ABS);
+	*out = x;
+	return 0;
+}
+
+static int get_int(parse_ctx *ctx, json_t *value, const char *path, int64_t lo, int64_t hi, int64_t *out) {
+	if (!json_is_integer(value))
+		return fail(ctx, "%s: must be an integer", path);
+	json_int_t x = json_integer_value(value);
+	if (x < lo || x > hi)
+		return fail(ctx, "%s: %lld is out of range [%lld, %lld]", path, (long long)x, (long long)lo,
+		            (long long)hi);
+	*out = (int64_t)x;
+	return 0;
+}
+
+// An array of min_n..3 numbers; missing components stay as given in *out.
+static int get_vec(parse_ctx *ctx, json_t *value, const char *path, size_t min_n, pool_vec3 *out) {
+	if (!json_is_array(value) || json_array_size(value) < min_n || json_array_size(value) > 3) {
+		if (min_n == 3)
+			return fail(ctx, "%s: must be an array of 3 numbers", path);
+		return fail(ctx, "%s: must be an array of %zu or 3 numbers", path, min_n);
+	}
+	double c[3] = {out->x, out->y, out->z};
+	for (size_t i = 0; i < json_array_size(value); ++i) {
+		char sub[96];
+		snprintf(sub, sizeof sub, "%s[%zu]", path, i);
+		if (get_number(ctx, json_array_get(value, i), sub, &c[i]))
+			return -1;
+	}
+	out->x = c[0];
+	out->y = c[1];
+	out->z = c[2];
+	return 0;
+}
+
+static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
+	static const char *const fields[] = {"preset", "length", "width", "cushion_height",
+	                                     "corner_mouth", "side_mouth", NULL};
+	*def = pool_default_table_def();
+	if (!table)
+		return 0;
+	if (!json_is_object(table))
+		return fail(ctx, "table: must be an object");
+	if (check_fields(ctx, table, "table", fields))
+		return -1;
+	json_t *preset = json_object_get(table, "preset");
+	if (preset) {
+		if (!json_is_string(preset))
+			return fail(ctx, "table.preset: must be a string");
+		if (pool_table_preset(json_string_value(preset), def) != POOL_OK)
+			return fail(ctx, "table.preset: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)",
+			            json_string_value(preset));
+	}
+	struct {
+		const char *name;
+		double *field;
+	} overrides[] = {
+		{"length", &def->length},
+		{"width", &def->width},
+		{"cushion_height", &def->cushion_height},
+		{"corner_mouth", &def->corner_mouth},
+		{"side_mouth", &def->side_mouth},
+	};
+	for (size_t i = 0; i < sizeof overrides / sizeof overrides[0]; ++i) {
+		json_t *v = json_object_get(table, overrides[i].name);
+		char path[64];
+		snprintf(path, sizeof path, "table.%s", overrides[i].name);
+		if (v && get_number(ctx, v, path, overrides[i].field))
+			return -1;
+	}
+	pool_error e = {{0}};
+	pool_result r = pool_table_def_validate(def, &e);
+	if (r != POOL_OK)
+		return fail_lib(ctx, "table", r, &e);
+	return 0;
+}
+
+static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
+	*p = pool_default_params();
+	if (!params)
+		return 0;
+	if (!json_is_object(params))
+		return fail(ctx, "params: must be an object");
+	struct {
+		const char *name;
+		double *field;
+	} names[] = {
+		{"g", &p->g},
+		{"mu_slide", &p->mu_slide},
+		{"mu_roll", &p->mu_roll},
+		{"mu_spin", &p->mu_spin},
+		{"mu_ball", &p->mu_ball},
+		{"e_ball", &p->e_ball},
+		{"mu_cushion", &p->mu_cushion},
+		{"e_cushion", &p->e_cushion},
+		{"mu_table", &p->mu_table},
+		{"e_table", &p->e_table},
+		{"ball_radius", &p->ball_radius},
+		{"ball_mass", &p->ball_mass},
+		{"cue_mass", &p->cue_mass},
+	};
+	size_t n = sizeof names / sizeof names[0];
+	const char *key;
+	json_t *value;
+	json_object_foreach(params, key, value) {
+		size_t i = 0;
+		while (i < n && strcmp(key, names[i].name) != 0)
+			++i;
+		if (i == n)
+			return fail(ctx, "params.%s: unknown field", key);
+		char path[64];
+		snprintf(path, sizeof path, "params.%s", key);
+		if (get_number(ctx, value, path, names[i].field))
+			return -1;
+	}
+	pool_error e = {{0}};
+	pool_result r = pool_params_validate(p, &e);
+	if (r != POOL_OK)
+		return fail_lib(ctx, "params", r, &e);
+	return 0;
+}
+
+static int parse_options(parse_ctx *ctx, json_t *options, pool_sim_def *def) {
+	static const char *const fields[] = {"airborne", "max_time", "max_events", NULL};
+	if (!options)
+		return 0;
+	if (!json_is_object(options))
+		return fail(ctx, "options: must be an object");
+	if (check_fields(ctx, options, "options", fields))
+		return -1;
+	json_t *v = json_object_get(options, "airborne");
+	if (v) {
+		if (!json_is_boolean(v))
+			return fail(ctx, "options.airborne: must be true or false");
+		def->airborne = json_is_true(v);
+	}
+	v = json_object_get(options, "max_time");
+	if (v) {
+		if (get_number(ctx, v, "options.max_time", &def->max_time))
+			return -1;
+		if (!(def->max_time > 0.0))
+			return fail(ctx, "options.max_time: must be > 0");
+	}
+	v = json_object_get(options, "max_events");
+	if (v) {
+		int64_t n;
+		if (get_int(ctx, v, "options.max_events", 1, INT32_MAX, &n))
+			return -1;
+		def->max_events = (int)n;
+	}
+	return 0;
+}
+
+// The state a ball starts in follows from its velocities (the library re-derives it; this copy
+// is for callers that read the scenario without a simulation, such as the comparison plugins).
+static pool_motion derive_motion(const pool_ball_state *b, double radius) {
+	if (b->pos.z > radius + 1e-9 || b->vel.z != 0.0)
+		return POOL_MOTION_AIRBORNE;
+	// Slip of the contact point: u = v + R k x w.
+	double ux = b->vel.x - radius * b->omega.y;
+	double uy = b->vel.y + radius * b->omega.x;
+	if (ux != 0.0 || uy != 0.0)
+		return POOL_MOTION_SLIDING;
+	if (b->vel.x != 0.0 || b->vel.y != 0.0)
+		return POOL_MOTION_ROLLING;
+	if (b->omega.z != 0.0)
+		return POOL_MOTION_SPINNING;
+	return POOL_MOTION_STATIONARY;
+}
+
+static int parse_ball(parse_ctx *ctx, json_t *ball, size_t i, double radius, pool_ball_state *out) {
+	static const char *const fields[] = {"id", "pos", "vel", "omega", NULL};
+	char path[64], sub[96];
+	snprintf(path, sizeof path, "balls[%zu]", i);
+	if (!json_is_object(ball))
+		return fail(ctx, "%s: must be an object", path);
+	if (check_fields(ctx, ball, path, fields))
+		return -1;
+	memset(out, 0, sizeof *out);
+	json_t *id = json_object_get(ball, "id");
+	if (!id)
+		return fail(ctx, "%s.id: missing", path);
+	int64_t id_value;
+	snprintf(sub, sizeof sub, "%s.id", path);
+	if (get_int(ctx, id, sub, INT32_MIN, INT32_MAX, &id_value))
+		return -1;
+	out->id = (int32_t)id_value;
+	json_t *pos = json_object_get(ball, "pos");
+	if (!pos)
+		return fail(ctx, "%s.pos: missing", path);
+	snprintf(sub, sizeof sub, "%s.pos", path);
+	out->pos.z = radius;
+	if (get_vec(ctx, pos, sub, 2, &out->pos))
+		return -1;
+	json_t *vel = json_object_get(ball, "vel");
+	snprintf(sub, sizeof sub, "%s.vel", path);
+	if (vel && get_vec(ctx, vel, sub, 2, &out->vel))
+		return -1;
+	json_t *omega = json_object_get(ball, "omega");
+	snprintf(sub, sizeof sub, "%s.omega", path);
+	if (omega && get_vec(ctx, omega, sub, 3, &out->omega))
+		return -1;
+	out->motion = derive_motion(out, radius);
+	return 0;
+}
+
+static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
+	static const char *const fields[] = {"ball", "speed", "phi", "theta", "a", "b", NULL};
+	if (!json_is_object(strike))
+		return fail(ctx, "strike: must be an object");
+	if (check_fields(ctx, strike, "strike", fields))
+		return -1;
+	json_t *ball = json_object_get(strike, "ball");
+	if (!ball)
+		return fail(ctx, "strike.ball: missing");
+	int64_t id;
+	if (get_int(ctx, ball, "strike.ball", INT32_MIN, INT32_MAX, &id))
+		return -1;
+	s->strike_ball = (int)id;
+	int found = -1;
+	for (int i = 0; i < s->ball_count; ++i)
+		if (s->balls[i].id == id)
+			found = i;
+	if (found < 0)
+		return fail(ctx, "strike.ball: no ball has id %lld", (long long)id);
+	json_t *speed = json_object_get(strike, "speed");
+	if (!speed)
+		return fail(ctx, "strike.speed: missing");
+	memset(&s->strike, 0, sizeof s->strike);
+	if (get_number(ctx, speed, "strike.speed", &s->strike.speed))
+		return -1;
+	struct {
+		const char *name;
+		double *field;
+		double scale;
+	} optional[] = {
+		{"phi", &s->strike.phi, POOL_PI / 180.0},
+		{"theta", &s->strike.theta, POOL_PI / 180.0},
+		{"a", &s->strike.a, 1.0},
+		{"b", &s->strike.b, 1.0},
+	};
+	for (size_t i = 0; i < sizeof optional / sizeof optional[0]; ++i) {
+		json_t *v = json_object_get(strike, optional[i].name);
+		char path[32];
+		snprintf(path, sizeof path, "strike.%s", optional[i].name);
+		double x = 0.0;
+		if (v && get_number(ctx, v, path, &x))
+			return -1;
+		*optional[i].field = x * optional[i].scale;
+	}
+	s->has_strike = true;
+	return 0;
+}
+
+// Checks the balls against each other with the library's own rules, by building a throw-away
+// simulation: pool_sim_add_ball rejects duplicates, overlaps and off-table balls and names the
+// ball "balls[i]" with i its insertion index, which is also its index in the file.
+static int check_with_sim(parse_ctx *ctx, const pool_scenario *s) {
+	// Overlaps first, here, so the message has the documented form
+	// "balls[2].pos: overlaps ball 1 by 0.003 m" whatever the library's wording.
+	double radius = s->def.params.ball_radius;
+	for (int j = 0; j < s->ball_count; ++j) {
+		for (int i = 0; i < j; ++i) {
+			if (s->balls[i].id == s->balls[j].id)
+				return fail(ctx, "balls[%d].id: duplicate id %d (also balls[%d])", j,
+				            (int)s->balls[j].id, i);
+			double dx = s->balls[j].pos.x - s->balls[i].pos.x;
+			double dy = s->balls[j].pos.y - s->balls[i].pos.y;
+			double dz = s->balls[j].pos.z - s->balls[i].pos.z;
+			double depth = 2.0 * radius - sqrt(dx * dx + dy * dy + dz * dz);
+			if (depth > POOL_TOUCH_TOLERANCE)
+				return fail(ctx, "balls[%d].pos: overlaps ball %d by %.3g m", j, (int)s->balls[i].id,
+				            depth);
+		}
+	}
+	pool_sim *sim = NULL;
+	pool_error e = {{0}};
+	pool_result r = pool_sim_create(&s->def, &sim, &e);
+	if (r != POOL_OK)
+		return fail_lib(ctx, "options", r, &e);
+	int status = 0;
+	for (int i = 0; i < s->ball_count && status == 0; ++i) {
+		memset(&e, 0, sizeof e);
+		r = pool_sim_add_ball(sim, &s->balls[i], &e);
+		if (r != POOL_OK) {
+			char path[32];
+			snprintf(path, sizeof path, "balls[%d]", i);
+			status = fail_lib(ctx, path, r, &e);
+		}
+	}
+	if (status == 0 && s->has_strike) {
+		memset(&e, 0, sizeof e);
+		pool_vec3 vel, omega;
+		r = pool_strike_velocities(&s->def.params, &s->strike, &vel, &omega, &e);
+		if (r == POOL_OK) {
+			memset(&e, 0, sizeof e);
+			r = pool_sim_strike(sim, s->strike_ball, &s->strike, &e);
+		}
+		if (r != POOL_OK)
+			status = fail_lib(ctx, "strike", r, &e);
+	}
+	pool_sim_destroy(sim);
+	return status;
+}
+
+static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
+	static const char *const fields[] = {"format", "name", "description", "table", "params",
+	                                     "balls", "strike", "options", NULL};
+	if (!json_is_object(root))
+		return fail(ctx, "(document): must be a JSON object");
+	if (check_fields(ctx, root, "", fields))
+		return -1;
+	json_t *format = json_object_get(root, "format");
+	if (!format)
+		return fail(ctx, "format: missing (expected \"%s\")", scenario_format);
+	if (!json_is_string(format) || strcmp(json_string_value(format), scenario_format) != 0)
+		return fail(ctx, "format: expected \"%s\"", scenario_format);
+	const char *text_fields[] = {"name", "description"};
+	for (int i = 0; i < 2; ++i) {
+		json_t *v = json_object_get(root, text_fields[i]);
+		if (v && !json_is_string(v))
+			return fail(ctx, "%s: must be a string", text_fields[i]);
+	}
+
+	s->def = pool_default_sim_def();
+	if (parse_table(ctx, json_object_get(root, "table"), &s->def.table))
+		return -1;
+	if (parse_params(ctx, json_object_get(root, "params"), &s->def.params))
+		return -1;
+	if (parse_options(ctx, json_object_get(root, "options"), &s->def))
+		return -1;
+
+	json_t *balls = json_object_get(root, "balls");
+	if (!balls)
+		return fail(ctx, "balls: missing");
+	if (!json_is_array(balls) || json_array_size(balls) == 0)
+		return fail(ctx, "balls: must be a non-empty array");
+	if (json_array_size(balls) > 100000)
+		return fail(ctx, "balls: too many balls (limit 100000)");
+	s->balls = calloc(json_array_size(balls), sizeof *s->balls);
+	if (!s->balls)
+		return fail(ctx, "balls: out of memory");
+	for (size_t i = 0; i < json_array_size(balls); ++i) {
+		if (parse_ball(ctx, json_array_get(balls, i), i, s->def.params.ball_radius, &s->balls[i]))
+			return -1;
+		s->ball_count = (int)i + 1;
+	}
+
+	json_t *strike = json_object_get(root, "strike");
+	if (strike && parse_strike(ctx, strike, s))
+		return -1;
+	return check_with_sim(ctx, s);
+}
+
+int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
+                        size_t err_size) {
+	parse_ctx ctx = {err, err_size};
+	memset(scenario, 0, sizeof *scenario);
+	if (err && err_size)
+		err[0] = '\0';
+	json_error_t jerr;
+	json_t *root = json_loadb(json, length, JSON_REJECT_DUPLICATES, &jerr);
+	if (!root)
+		return fail(&ctx, "(document): malformed JSON at line %d, column %d: %s", jerr.line,
+		            jerr.column, jerr.text);
+	int status = parse_document(&ctx, root, scenario);
+	json_decref(root);
+	if (status != 0)
+		pool_scenario_free(scenario);
+	return status;
+}
+
+int pool_scenario_load_file(const char *path, pool_scenario *scenario, char *err,
+                            size_t err_size) {
+	parse_ctx ctx = {err, err_size};
+	memset(scenario, 0, sizeof *scenario);
+	bool use_stdin = strcmp(path, "-") == 0;
+	FILE *f = use_stdin ? stdin : fopen(path, "rb");
+	if (!f)
+		return fail(&ctx, "%s: %s", path, strerror(errno));
+	size_t length = 0, capacity = 65536;
+	char *data = malloc(capacity);
+	int status = data ? 0 : fail(&ctx, "%s: out of memory", path);
+	while (status == 0) {
+		if (length == capacity) {
+			char *bigger = realloc(data, capacity * 2);
+			if (!bigger) {
+				status = fail(&ctx, "%s: out of memory", path);
+				break;
+			}
+			data = bigger;
+			capacity *= 2;
+		}
+		size_t n = fread(data + length, 1, capacity - length, f);
+		length += n;
+		if (n == 0) {
+			if (ferror(f))
+				status = fail(&ctx, "%s: read error", path);
+			break;
+		}
+	}
+	if (!use_stdin)
+		fclose(f);
+	if (status == 0)
+		status = pool_scenario_parse(data, length, scenario, err, err_size);
+	free(data);
+	return status;
+}
+
+void pool_scenario_free(pool_scenario *scenario) {
+	if (!scenario)
+		return;
+	free(scenario->balls);
+	memset(scenario, 0, sizeof *scenario);
+}
+
+pool_result pool_scenario_setup(const pool_scenario *scenario, pool_sim **sim, pool_error *err) {
+	pool_error local = {{0}};
+	pool_error *e = err ? err : &local;
+	e->message[0] = '\0';
+	pool_result r = *sim ? pool_sim_reset(*sim, &scenario->def, e)
+	                     : pool_sim_create(&scenario->def, sim, e);
+	if (r != POOL_OK)
+		return r;
+	for (int i = 0; i < scenario->ball_count; ++i) {
+		r = pool_sim_add_ball(*sim, &scenario->balls[i], e);
+		if (r != POOL_OK)
+			return r;
+	}
+	if (scenario->has_strike)
+		r = pool_sim_strike(*sim, scenario->strike_ball, &scenario->strike, e);
+	return r;
+}

@@ -1,0 +1,207 @@
+// pool-sim: simulates one shot from a libpool-scenario/1 file and prints its libpool-result/1.
+// Exit status: 0 success, 2 bad input or usage (message on stderr), 1 internal failure.
+#include <errno.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "atomic_file.h"
+#include "scenario.h"
+
+#define EXIT_BAD_INPUT 2
+#define EXIT_INTERNAL 1
+
+/// Command-line options. New options (e.g. an LCM URL, a playback rate) add a field here, a
+/// case in parse_options and, if they watch the shot, an event hook.
+typedef struct sim_options {
+	const char *scenario_path; ///< "-" = standard input
+	const char *output_path;   ///< NULL = standard output
+	double sample_dt;          ///< s; > 0 adds sampled trajectories
+	bool pretty;               ///< indented JSON
+	bool summary;              ///< human-readable summary on standard error
+	bool help;                 ///< print usage and exit 0
+} sim_options;
+
+/// Called after every event appended to the simulation (the strike included), in order.
+typedef void (*sim_event_hook)(const pool_sim *sim, const pool_event *event, void *user);
+
+static const char usage_text[] =
+	"usage: pool-sim SCENARIO.json [-o RESULT.json] [--sample DT] [--pretty] [--summary]\n"
+	"\n"
+	"Simulates one shot described by a libpool-scenario/1 file (\"-\" reads standard input)\n"
+	"and prints its libpool-result/1 JSON.\n"
+	"\n"
+	"  -o, --output FILE  write the result to FILE instead of standard output (atomically:\n"
+	"                     no file is left behind on failure)\n"
+	"  --sample DT        add \"samples\": every ball's position every DT seconds and at\n"
+	"                     every event (for plots and animations)\n"
+	"  --pretty           indent the JSON\n"
+	"  --summary          print events by type, pocketed balls and times on standard error\n"
+	"  -h, --help         show this help\n"
+	"\n"
+	"Exit status: 0 success, 2 bad input or usage (message names the field), 1 internal error.\n";
+
+static int usage_error(const char *format, const char *arg) {
+	fprintf(stderr, "pool-sim: ");
+	fprintf(stderr, format, arg);
+	fprintf(stderr, "\nTry 'pool-sim --help'.\n");
+	return EXIT_BAD_INPUT;
+}
+
+static int parse_options(int argc, char **argv, sim_options *o) {
+	memset(o, 0, sizeof *o);
+	bool only_files = false;
+	for (int i = 1; i < argc; ++i) {
+		const char *a = argv[i];
+		if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
+			if (o->scenario_path)
+				return usage_error("unexpected argument '%s' (one scenario per run)", a);
+			o->scenario_path = a;
+		} else if (strcmp(a, "--") == 0) {
+			only_files = true;
+		} else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+			o->help = true;
+		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+			if (i + 1 >= argc)
+				return usage_error("option %s needs a file name", a);
+			o->output_path = argv[++i];
+		} else if (strcmp(a, "--sample") == 0) {
+			if (i + 1 >= argc)
+				return usage_error("option %s needs a time step in seconds", a);
+			char *end = NULL;
+			errno = 0;
+			double dt = strtod(argv[++i], &end);
+			if (errno || end == argv[i] || *end || !isfinite(dt) || dt <= 0.0)
+				return usage_error("--sample: '%s' is not a positive time step in seconds", argv[i]);
+			o->sample_dt = dt;
+		} else if (strcmp(a, "--pretty") == 0) {
+			o->pretty = true;
+		} else if (strcmp(a, "--summary") == 0) {
+			o->summary = true;
+		} else {
+			return usage_error("unknown option '%s'", a);
+		}
+	}
+	if (!o->help && !o->scenario_path)
+		return usage_error("%s", "missing SCENARIO.json");
+	return 0;
+}
+
+/// Runs the shot event by event so a caller can watch (stream, pace) each event as it appears.
+static pool_result run_shot(pool_sim *sim, sim_event_hook hook, void *user) {
+	int seen = 0;
+	for (;;) {
+		int count = 0;
+		const pool_event *events = pool_sim_events(sim, &count);
+		for (; hook && seen < count; ++seen)
+			hook(sim, &events[seen], user);
+		int status = pool_sim_step(sim);
+		if (status < 0)
+			return (pool_result)status;
+		if (status == 0)
+			break;
+	}
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	for (; hook && seen < count; ++seen)
+		hook(sim, &events[seen], user);
+	return POOL_OK;
+}
+
+static void print_summary(const pool_sim *sim, double cpu_seconds) {
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	int per_type[POOL_EVENT_LINK_END + 1] = {0};
+	for (int i = 0; i < count; ++i)
+		if ((int)events[i].type >= 0 && events[i].type <= POOL_EVENT_LINK_END)
+			per_type[events[i].type]++;
+	fprintf(stderr, "pool-sim: %d events, %.3f s simulated, stop: %s, cpu %.3f ms\n", count,
+	        pool_sim_time(sim), pool_stop_reason_name(pool_sim_stop_reason(sim)),
+	        cpu_seconds * 1e3);
+	fprintf(stderr, "  events by type:");
+	for (int t = 0; t <= POOL_EVENT_LINK_END; ++t)
+		if (per_type[t])
+			fprintf(stderr, " %s %d", pool_event_type_name((pool_event_type)t), per_type[t]);
+	fprintf(stderr, "\n  pocketed:");
+	int pocketed = 0;
+	for (int i = 0; i < count; ++i) {
+		if (events[i].type != POOL_EVENT_POCKET && events[i].type != POOL_EVENT_OFF_TABLE)
+			continue;
+		const pool_ball_state *after = pool_sim_event_states(sim, &events[i]);
+		const char *where = events[i].type == POOL_EVENT_POCKET ? pool_pocket_name(events[i].pocket)
+		                                                        : "off table";
+		fprintf(stderr, " ball %d (%s, t=%.3f s)", (int)after[0].id, where ? where : "?",
+		        events[i].time);
+		pocketed++;
+	}
+	fprintf(stderr, "%s\n", pocketed ? "" : " none");
+}
+
+int main(int argc, char **argv) {
+	sim_options o;
+	int status = parse_options(argc, argv, &o);
+	if (status)
+		return status;
+	if (o.help) {
+		fputs(usage_text, stdout);
+		return 0;
+	}
+
+	pool_scenario scenario;
+	char err[512];
+	if (pool_scenario_load_file(o.scenario_path, &scenario, err, sizeof err) != 0) {
+		fprintf(stderr, "pool-sim: %s\n", err);
+		return EXIT_BAD_INPUT;
+	}
+
+	pool_sim *sim = NULL;
+	pool_error perr = {{0}};
+	pool_result r = pool_scenario_setup(&scenario, &sim, &perr);
+	if (r != POOL_OK) {
+		// The parser already ran these checks, so this is a rule it does not know about yet.
+		fprintf(stderr, "pool-sim: %s\n", perr.message[0] ? perr.message : pool_result_str(r));
+		pool_sim_destroy(sim);
+		pool_scenario_free(&scenario);
+		return r == POOL_ERR_OUT_OF_MEMORY || r == POOL_ERR_INTERNAL ? EXIT_INTERNAL : EXIT_BAD_INPUT;
+	}
+
+	clock_t start = clock();
+	r = run_shot(sim, NULL, NULL);
+	double cpu = (double)(clock() - start) / CLOCKS_PER_SEC;
+	if (r != POOL_OK) {
+		fprintf(stderr, "pool-sim: simulation failed at t = %.17g s: %s\n", pool_sim_time(sim),
+		        pool_result_str(r));
+		pool_sim_destroy(sim);
+		pool_scenario_free(&scenario);
+		return EXIT_INTERNAL;
+	}
+	if (o.summary)
+		print_summary(sim, cpu);
+
+	pool_result_options ro = {.sample_dt = o.sample_dt, .pretty = o.pretty, .def = &scenario.def};
+	char *json = pool_result_json(sim, &ro);
+	status = 0;
+	if (!json) {
+		fprintf(stderr, "pool-sim: could not write the result (out of memory or sampling failed)\n");
+		status = EXIT_INTERNAL;
+	} else if (o.output_path) {
+		size_t length = strlen(json);
+		if (pool_write_file_atomic(o.output_path, json, length, err, sizeof err) != 0) {
+			fprintf(stderr, "pool-sim: %s\n", err);
+			status = EXIT_INTERNAL;
+		}
+	} else {
+		fputs(json, stdout);
+		if (fflush(stdout) != 0 || ferror(stdout)) {
+			fprintf(stderr, "pool-sim: standard output: %s\n", strerror(errno));
+			status = EXIT_INTERNAL;
+		}
+	}
+	free(json);
+	pool_sim_destroy(sim);
+	pool_scenario_free(&scenario);
+	return status;
+}
