@@ -1,0 +1,428 @@
+// libpool: real roots of polynomials of degree <= 4 by isolation between critical points.
+//
+// Why this method: collision prediction needs the real roots only, must never lose one (a lost
+// root is a missed collision) and must not invent one. The real roots of p are separated by the
+// real roots of p' (Rolle): between two consecutive critical points p is monotone, so it has a
+// root there exactly when its values at the ends have opposite signs, and then exactly one. The
+// critical points come recursively from p'' (a quadratic, closed form) and p' (a cubic, by the
+// same isolation). Each bracketed root is found by Newton's method safeguarded by the bracket, so
+// the count comes from sign tests and each root is as accurate as evaluating p allows (relative
+// error about kappa * u). A critical point where |p| is below the rounding error of evaluating p
+// is a multiple root (a grazing contact): reported there with its multiplicity, never dropped.
+//
+// Scaling: x = 2^e y with e chosen from the coefficients (exact, powers of two), so that huge or
+// tiny roots and coefficients do not overflow or underflow while evaluating p.
+#include <float.h>
+#include <math.h>
+#include <stdbool.h>
+
+#include "pool/quartic.h"
+
+#define POOL_Q_U 0x1p-53
+// Multiple of u * sum |a_k x^k| below which p(x) at a critical point counts as zero: covers
+// Horner's rounding (about 2n u) plus the rounding of the coefficients themselves.
+#define POOL_Q_TOUCH 16.0
+#define POOL_Q_MAX_ITER 200
+
+typedef struct pool_q_val {
+	double x;  // point
+	double f;  // p(x)
+	double d1; // p'(x)
+	double d2; // p''(x)
+	int sign;  // sign of p(x); 0 when it is zero within rounding (critical points only)
+} pool_q_val;
+
+// p(x) and its first two derivatives by Horner's scheme (b[k] is the coefficient of x^k).
+static pool_q_val pool_q_eval(const double *b, int n, double x) {
+	double f = b[n], d1 = 0.0, d2 = 0.0;
+	for (int k = n - 1; k >= 0; --k) {
+		d2 = d2 * x + d1;
+		d1 = d1 * x + f;
+		f = f * x + b[k];
+	}
+	pool_q_val v = {x, f, d1, 2.0 * d2, (f > 0.0) - (f < 0.0)};
+	return v;
+}
+
+// p(x) and p'(x) only (the Newton iteration).
+static inline double pool_q_eval_fd(const double *b, int n, double x, double *d1) {
+	double f = b[n], d = 0.0;
+	for (int k = n - 1; k >= 0; --k) {
+		d = d * x + f;
+		f = f * x + b[k];
+	}
+	*d1 = d;
+	return f;
+}
+
+// Sum of |b_k| |x|^k: the scale of the rounding error of p(x).
+static double pool_q_abs_sum(const double *b, int n, double x) {
+	double ax = fabs(x), s = fabs(b[n]);
+	for (int k = n - 1; k >= 0; --k)
+		s = s * ax + fabs(b[k]);
+	return s;
+}
+
+// A point strictly inside (a, c): the middle, or the geometric middle when the bracket spans
+// orders of magnitude on one side of 0 (bisection then still gains a bit of exponent per step).
+static double pool_q_split(double a, double c) {
+	if (a < 0.0 && c > 0.0)
+		return 0.0;
+	if (a >= 0.0 && c > 4.0 * a && a > 0.0)
+		return sqrt(a) * sqrt(c);
+	if (c <= 0.0 && a < 4.0 * c && c < 0.0)
+		return -sqrt(-a) * sqrt(-c);
+	return 0.5 * a + 0.5 * c;
+}
+
+// Distance from point v towards the root of p in direction dir, from the local Taylor terms
+// (each one alone would reach the root at about this distance; the smallest is the best guess).
+static double pool_q_guess_step(const double *b, int n, const pool_q_val *v, int dir) {
+	double af = fabs(v->f), t = INFINITY;
+	// Slope term, when moving in dir brings p towards 0.
+	if (v->d1 != 0.0 && (v->d1 * dir > 0.0) == (v->f < 0.0))
+		t = af / fabs(v->d1);
+	if (v->d2 != 0.0) {
+		double t2 = sqrt(2.0 * af / fabs(v->d2));
+		if (t2 < t)
+			t = t2;
+	}
+	double lead = fabs(b[n]);
+	if (!(t < INFINITY) || lead * pow(t, n) > af) {
+		// The leading term alone reaches |f| sooner: its distance bounds the root's distance.
+		double tn = n == 4 ? sqrt(sqrt(af / lead)) : n == 3 ? cbrt(af / lead) : sqrt(af / lead);
+		if (tn < t)
+			t = tn;
+	}
+	if (!(t > 0.0) || !(t < INFINITY))
+		t = fmax(1.0, fabs(v->x));
+	return t;
+}
+
+// The single root of p between a and c (p monotone there, signs at the ends opposite and non-zero).
+// a or c may be infinite. Returns NAN when no finite bracket could be built (overflow).
+static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val c) {
+	const int sa = a.sign;
+	double x;
+	if (!isfinite(a.x) || !isfinite(c.x)) {
+		// Expand from the finite end until the sign changes: a finite bracket.
+		pool_q_val e = isfinite(a.x) ? a : c;
+		int dir = isfinite(a.x) ? 1 : -1;
+		double t = pool_q_guess_step(b, n, &e, dir);
+		for (int i = 0;; ++i) {
+			x = e.x + dir * t;
+			if (!isfinite(x) || i > 2100)
+				return NAN;
+			double d;
+			double f = pool_q_eval_fd(b, n, x, &d);
+			int s = (f > 0.0) - (f < 0.0);
+			if (s == 0)
+				return x;
+			if (s == e.sign) {
+				e.x = x; // still on the near side: move the finite end out
+				if (dir > 0)
+					a.x = x;
+				else
+					c.x = x;
+				t *= 2.0;
+				continue;
+			}
+			if (dir > 0)
+				c.x = x;
+			else
+				a.x = x;
+			break;
+		}
+	} else {
+		// Start from the end where |p| is smaller (the root is nearer to it), Taylor guess.
+		const pool_q_val *e = fabs(a.f) <= fabs(c.f) ? &a : &c;
+		int dir = e == &a ? 1 : -1;
+		x = e->x + dir * pool_q_guess_step(b, n, e, dir);
+		if (!(x > a.x && x < c.x))
+			x = pool_q_split(a.x, c.x);
+	}
+	double lo = a.x, hi = c.x, dx_prev = INFINITY;
+	for (int it = 0; it < POOL_Q_MAX_ITER; ++it) {
+		double d;
+		double f = pool_q_eval_fd(b, n, x, &d);
+		if (f == 0.0)
+			return x;
+		if ((f > 0.0) - (f < 0.0) == sa)
+			lo = x;
+		else
+			hi = x;
+		double dx = f / d;
+		double xn = x - dx;
+		if (!(xn > lo && xn < hi)) {
+			// Newton left the bracket (or p' vanished): bisect instead.
+			xn = pool_q_split(lo, hi);
+			if (!(xn > lo && xn < hi))
+				return x; // the bracket holds no other double: x is the root to rounding
+			dx_prev = INFINITY;
+		} else {
+			double adx = fabs(dx);
+			if (adx <= 4.0 * POOL_Q_U * fabs(xn))
+				return xn; // quadratic convergence: xn is accurate to rounding
+			// Steps no longer shrinking near the root: evaluation noise dominates.
+			if (adx >= dx_prev && adx <= 1e-7 * fabs(xn))
+				return xn;
+			dx_prev = adx;
+		}
+		x = xn;
+	}
+	return x;
+}
+
+// Roots of a degree-n polynomial b (b[n] != 0, coefficient of x^k in b[k]) in [lo, hi], ascending,
+// by multiplicity, at most n. lo/hi may be infinite. With first_only, stops at the first root.
+static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only);
+
+static int pool_q_quadratic(const double *b, double lo, double hi, double *out) {
+	double b0 = b[0], b1 = b[1], b2 = b[2];
+	double disc = b1 * b1 - 4.0 * b2 * b0;
+	double r[2];
+	if (disc >= 0.0) {
+		double q = -0.5 * (b1 + copysign(sqrt(disc), b1));
+		if (q == 0.0) {
+			r[0] = r[1] = 0.0; // b1 = 0 and disc = 0: b0 = 0
+		} else {
+			double r1 = q / b2, r2 = b0 / q;
+			r[0] = fmin(r1, r2);
+			r[1] = fmax(r1, r2);
+		}
+	} else {
+		// p at its vertex is -disc / (4 b2); it touches 0 within rounding of evaluating p there
+		// when |disc| <= 4 |b2| * TOUCH u (|b0| + 3 b1^2 / (4 |b2|)).
+		double tol = POOL_Q_TOUCH * POOL_Q_U * (4.0 * fabs(b2 * b0) + 3.0 * b1 * b1);
+		if (-disc > tol)
+			return 0;
+		r[0] = r[1] = -b1 / (2.0 * b2);
+	}
+	int m = 0;
+	for (int i = 0; i < 2; ++i)
+		if (r[i] >= lo && r[i] <= hi)
+			out[m++] = r[i] + 0.0; // + 0.0: no -0
+	return m;
+}
+
+static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only) {
+	if (n <= 0)
+		return 0;
+	if (n == 1) {
+		double r = -b[0] / b[1] + 0.0;
+		if (r >= lo && r <= hi) {
+			out[0] = r;
+			return 1;
+		}
+		return 0;
+	}
+	if (n == 2)
+		return pool_q_quadratic(b, lo, hi, out);
+
+	// Critical points in the window, with multiplicity.
+	double d[4];
+	for (int k = 0; k < n; ++k)
+		d[k] = (double)(k + 1) * b[k + 1];
+	double crit[3];
+	int ncrit = pool_q_roots_in(d, n - 1, lo, hi, crit, false);
+
+	int count = 0;
+	const int cap = first_only ? 1 : n;
+	if (ncrit == 0 && lo == -INFINITY && hi == INFINITY) {
+		// Monotone on the whole line (odd degree): split at the inflection point, whose value
+		// tells which side the single root is on.
+		double xi = -b[n - 1] / ((double)n * b[n]);
+		pool_q_val v = pool_q_eval(b, n, xi);
+		if (v.sign == 0) {
+			out[0] = xi + 0.0;
+			return 1;
+		}
+		pool_q_val inf = {v.sign == (b[n] > 0.0 ? 1 : -1) ? -INFINITY : INFINITY, NAN, NAN, NAN, -v.sign};
+		double r = inf.x < 0.0 ? pool_q_bracketed(b, n, inf, v) : pool_q_bracketed(b, n, v, inf);
+		if (r == r) {
+			out[0] = r;
+			return 1;
+		}
+		return 0;
+	}
+	// Left end of the window.
+	pool_q_val prev;
+	if (lo == -INFINITY) {
+		prev.x = -INFINITY;
+		prev.f = prev.d1 = prev.d2 = NAN;
+		prev.sign = ((b[n] > 0.0) == (n % 2 == 0)) ? 1 : -1;
+	} else {
+		prev = pool_q_eval(b, n, lo);
+		if (prev.sign == 0) {
+			out[count++] = lo;
+			if (first_only)
+				return count;
+		}
+	}
+	for (int i = 0; i < ncrit;) {
+		double cx = crit[i];
+		int mult = 1;
+		while (i + mult < ncrit && crit[i + mult] == cx)
+			++mult;
+		i += mult;
+		if (!(cx > prev.x))
+			continue; // coincides with the window's left end, already evaluated
+		pool_q_val v = pool_q_eval(b, n, cx);
+		if (fabs(v.f) <= POOL_Q_TOUCH * POOL_Q_U * pool_q_abs_sum(b, n, cx))
+			v.sign = 0;
+		if (prev.sign != 0 && v.sign != 0 && prev.sign != v.sign) {
+			double r = pool_q_bracketed(b, n, prev, v);
+			if (r == r && count < cap) {
+				out[count++] = r;
+				if (first_only)
+					return count;
+			}
+		}
+		if (v.sign == 0) {
+			for (int k = 0; k <= mult && count < cap; ++k)
+				out[count++] = cx;
+			if (first_only)
+				return count;
+		}
+		prev = v;
+	}
+	// Right end.
+	pool_q_val last;
+	if (hi == INFINITY) {
+		last.x = INFINITY;
+		last.f = last.d1 = last.d2 = NAN;
+		last.sign = b[n] > 0.0 ? 1 : -1;
+	} else {
+		if (!(hi > prev.x))
+			return count;
+		last = pool_q_eval(b, n, hi);
+	}
+	if (prev.sign != 0 && last.sign != 0 && prev.sign != last.sign) {
+		double r = pool_q_bracketed(b, n, prev, last);
+		if (r == r && count < cap)
+			out[count++] = r;
+	} else if (last.sign == 0 && count < cap) {
+		out[count++] = hi;
+	}
+	return count;
+}
+
+// The polynomial ready for the core: degree, coefficients by ascending power with no zero root
+// (factored out exactly), leading coefficient positive, and x = 2^scale y.
+typedef struct pool_q_poly {
+	int n;
+	int zeros; // multiplicity of the root x = 0
+	int scale;
+	double b[5];
+} pool_q_poly;
+
+// Returns false for non-finite input.
+static bool pool_q_prepare(const double c[5], pool_q_poly *p) {
+	double a[5];
+	for (int k = 0; k < 5; ++k) {
+		a[k] = c[4 - k];
+		if (!isfinite(a[k]))
+			return false;
+	}
+	int n = 4;
+	while (n >= 0 && a[n] == 0.0)
+		--n;
+	p->n = 0;
+	p->zeros = 0;
+	p->scale = 0;
+	if (n <= 0)
+		return true; // zero polynomial or a non-zero constant: no roots
+	int z = 0;
+	while (a[z] == 0.0)
+		++z;
+	p->zeros = z;
+	p->n = n - z;
+	n = p->n;
+	double sgn = a[n + z] > 0.0 ? 1.0 : -1.0;
+	// Fast path: coefficients in [2^-100, 2^100] cannot overflow Horner at any root.
+	bool moderate = true;
+	for (int k = 0; k <= n; ++k) {
+		double m = fabs(a[k + z]);
+		if (m != 0.0 && (m < 0x1p-100 || m > 0x1p100))
+			moderate = false;
+	}
+	if (moderate) {
+		for (int k = 0; k <= n; ++k)
+			p->b[k] = sgn * a[k + z];
+		return true;
+	}
+	// Balance: x = 2^e y with 2^(e n) |a_n| ~ |a_0| (the roots' geometric mean near 1), then
+	// divide by a power of two so the largest coefficient is near 1. Exact apart from underflow.
+	int e0 = ilogb(a[z]), en = ilogb(a[n + z]);
+	int diff = e0 - en;
+	int e = diff >= 0 ? (diff + n / 2) / n : -((-diff + n / 2) / n);
+	int emax = -100000;
+	for (int k = 0; k <= n; ++k) {
+		if (a[k + z] == 0.0)
+			continue;
+		int ek = ilogb(a[k + z]) + k * e;
+		if (ek > emax)
+			emax = ek;
+	}
+	for (int k = 0; k <= n; ++k)
+		p->b[k] = sgn * ldexp(a[k + z], k * e - emax);
+	p->scale = e;
+	while (p->n > 0 && p->b[p->n] == 0.0)
+		--p->n; // the leading term underflowed: its roots are beyond the double range
+	return true;
+}
+
+// y * 2^e without overflow in an intermediate power (x = 2^e y).
+static double pool_q_unscale(double y, int e) {
+	return e == 0 ? y : ldexp(y, e);
+}
+
+int pool_quartic_real_roots(const double c[5], double roots[4]) {
+	pool_q_poly p;
+	if (!c || !roots || !pool_q_prepare(c, &p))
+		return 0;
+	double y[4];
+	int m = pool_q_roots_in(p.b, p.n, -INFINITY, INFINITY, y, false);
+	// Merge the exact zero roots in ascending order; drop roots that overflow when unscaled.
+	int count = 0, zeros = p.zeros;
+	for (int i = 0; i < m; ++i) {
+		double x = pool_q_unscale(y[i], p.scale);
+		if (!isfinite(x))
+			continue;
+		while (zeros > 0 && x > 0.0) {
+			roots[count++] = 0.0;
+			--zeros;
+		}
+		roots[count++] = x;
+	}
+	while (zeros-- > 0)
+		roots[count++] = 0.0;
+	return count;
+}
+
+int pool_quartic_smallest_root_in(const double c[5], double lo, double hi, double *root) {
+	if (!c || !root || !(lo <= hi))
+		return -1;
+	pool_q_poly p;
+	if (!pool_q_prepare(c, &p))
+		return -1;
+	bool zero_in = p.zeros > 0 && lo <= 0.0 && 0.0 <= hi;
+	double y[4];
+	double ylo = pool_q_unscale(lo, -p.scale), yhi = pool_q_unscale(hi, -p.scale);
+	// Only roots below 0 can beat an exact zero root.
+	if (zero_in)
+		yhi = fmin(yhi, 0.0);
+	int m = pool_q_roots_in(p.b, p.n, ylo, yhi, y, true);
+	if (m > 0) {
+		double x = pool_q_unscale(y[0], p.scale);
+		if (x >= lo && x <= hi && !(zero_in && x > 0.0)) {
+			*root = x;
+			return 0;
+		}
+	}
+	if (zero_in) {
+		*root = 0.0;
+		return 0;
+	}
+	return -1;
+}
