@@ -1,0 +1,247 @@
+// Conversion between libpool simulations and pool_lcm messages (see lcm_convert.h).
+#include "lcm_convert.h"
+
+#include "scenario.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+
+// lcm-gen declares strings as char*; encoding only reads them, so static names are safe to use.
+static char pool_lcm_empty[] = "";
+
+int64_t pool_lcm_utime_now(void)
+{
+	struct timeval tv;
+	gettimeofday(&tv, NULL);
+	return (int64_t)tv.tv_sec * 1000000 + tv.tv_usec;
+}
+
+const char *pool_lcm_resolve_url(const char *url)
+{
+	if (url != NULL && url[0] != '\0') {
+		return url;
+	}
+	const char *env = getenv("LCM_DEFAULT_URL");
+	if (env != NULL && env[0] != '\0') {
+		return env;
+	}
+	return POOL_LCM_DEFAULT_URL;
+}
+
+void pool_lcm_ball_from_state(const pool_ball_state *state, pool_lcm_ball_state_t *out)
+{
+	out->id = state->id;
+	out->state = (int8_t)state->motion;
+	out->pos[0] = state->pos.x;
+	out->pos[1] = state->pos.y;
+	out->pos[2] = state->pos.z;
+	out->vel[0] = state->vel.x;
+	out->vel[1] = state->vel.y;
+	out->vel[2] = state->vel.z;
+	out->omega[0] = state->omega.x;
+	out->omega[1] = state->omega.y;
+	out->omega[2] = state->omega.z;
+}
+
+static char *pool_lcm_name_or_empty(const char *name)
+{
+	return name != NULL ? (char *)name : pool_lcm_empty;
+}
+
+// Fills out from an event without touching the sim's event array beyond it.
+static int pool_lcm_event_fill_from(const pool_sim *sim, const pool_event *event, int seq,
+                                    int64_t shot_id, int64_t utime, pool_lcm_event_t *out)
+{
+	memset(out, 0, sizeof *out);
+	out->utime = utime;
+	out->shot_id = shot_id;
+	out->seq = seq;
+	out->t = event->time;
+	out->type = pool_lcm_name_or_empty(pool_event_type_name(event->type));
+	out->rail = pool_lcm_name_or_empty(event->type == POOL_EVENT_BALL_CUSHION
+	                                       ? pool_rail_name(event->rail) : NULL);
+	out->pocket = pool_lcm_name_or_empty(event->type == POOL_EVENT_POCKET
+	                                         ? pool_pocket_name(event->pocket) : NULL);
+	out->num_balls = event->ball_count;
+	if (event->ball_count > 0) {
+		out->balls = calloc((size_t)event->ball_count, sizeof *out->balls);
+		if (out->balls == NULL) {
+			out->num_balls = 0;
+			return -1;
+		}
+		const pool_ball_state *after = pool_sim_event_states(sim, event);
+		for (int i = 0; i < event->ball_count; ++i) {
+			pool_lcm_ball_from_state(&after[i], &out->balls[i]);
+		}
+	}
+	return 0;
+}
+
+int pool_lcm_event_fill(const pool_sim *sim, int seq, int64_t shot_id, int64_t utime,
+                        pool_lcm_event_t *out)
+{
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	memset(out, 0, sizeof *out);
+	out->type = out->rail = out->pocket = pool_lcm_empty;
+	if (seq < 0 || seq >= count) {
+		return -1;
+	}
+	return pool_lcm_event_fill_from(sim, &events[seq], seq, shot_id, utime, out);
+}
+
+void pool_lcm_event_release(pool_lcm_event_t *msg)
+{
+	free(msg->balls);
+	msg->balls = NULL;
+	msg->num_balls = 0;
+}
+
+static void pool_lcm_shot_blank(int64_t shot_id, int64_t request_id, int64_t utime,
+                                pool_lcm_shot_t *out)
+{
+	memset(out, 0, sizeof *out);
+	out->utime = utime;
+	out->shot_id = shot_id;
+	out->request_id = request_id;
+	out->stop_reason = pool_lcm_empty;
+	out->error = pool_lcm_empty;
+}
+
+int pool_lcm_shot_fill(const pool_sim *sim, int64_t shot_id, int64_t request_id, int64_t utime,
+                       pool_lcm_shot_t *out)
+{
+	pool_lcm_shot_blank(shot_id, request_id, utime, out);
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	int balls = pool_sim_ball_count(sim);
+	if (count > 0) {
+		out->events = calloc((size_t)count, sizeof *out->events);
+		if (out->events == NULL) {
+			return -1;
+		}
+		for (int i = 0; i < count; ++i) {
+			out->num_events = i + 1;
+			if (pool_lcm_event_fill_from(sim, &events[i], i, shot_id, utime, &out->events[i]) != 0) {
+				pool_lcm_shot_release(out);
+				return -1;
+			}
+		}
+	}
+	if (balls > 0) {
+		pool_ball_state *states = calloc((size_t)balls, sizeof *states);
+		out->final_states = calloc((size_t)balls, sizeof *out->final_states);
+		if (states == NULL || out->final_states == NULL ||
+		    pool_sim_state_at(sim, pool_sim_time(sim), states) != POOL_OK) {
+			free(states);
+			pool_lcm_shot_release(out);
+			return -1;
+		}
+		out->num_balls = balls;
+		for (int i = 0; i < balls; ++i) {
+			pool_lcm_ball_from_state(&states[i], &out->final_states[i]);
+		}
+		free(states);
+	}
+	out->sim_time = pool_sim_time(sim);
+	out->stop_reason = pool_lcm_name_or_empty(pool_stop_reason_name(pool_sim_stop_reason(sim)));
+	return 0;
+}
+
+int pool_lcm_shot_fill_error(int64_t shot_id, int64_t request_id, int64_t utime,
+                             const char *message, pool_lcm_shot_t *out)
+{
+	pool_lcm_shot_blank(shot_id, request_id, utime, out);
+	const char *text = (message != NULL && message[0] != '\0') ? message : "unknown error";
+	char *copy = malloc(strlen(text) + 1);
+	if (copy == NULL) {
+		return -1;
+	}
+	strcpy(copy, text);
+	out->error = copy;
+	return 0;
+}
+
+void pool_lcm_shot_release(pool_lcm_shot_t *msg)
+{
+	for (int i = 0; i < msg->num_events; ++i) {
+		pool_lcm_event_release(&msg->events[i]);
+	}
+	free(msg->events);
+	free(msg->final_states);
+	if (msg->error != NULL && msg->error != pool_lcm_empty) {
+		free(msg->error);
+	}
+	msg->events = NULL;
+	msg->final_states = NULL;
+	msg->num_events = 0;
+	msg->num_balls = 0;
+	msg->error = pool_lcm_empty;
+}
+
+int pool_lcm_table_state_fill(const pool_sim *sim, double t, int64_t shot_id, int64_t utime,
+                              pool_lcm_table_state_t *out)
+{
+	memset(out, 0, sizeof *out);
+	out->utime = utime;
+	out->shot_id = shot_id;
+	out->t = t;
+	int balls = pool_sim_ball_count(sim);
+	if (balls <= 0) {
+		return 0;
+	}
+	pool_ball_state *states = calloc((size_t)balls, sizeof *states);
+	out->balls = calloc((size_t)balls, sizeof *out->balls);
+	if (states == NULL || out->balls == NULL || pool_sim_state_at(sim, t, states) != POOL_OK) {
+		free(states);
+		pool_lcm_table_state_release(out);
+		return -1;
+	}
+	out->num_balls = balls;
+	for (int i = 0; i < balls; ++i) {
+		pool_lcm_ball_from_state(&states[i], &out->balls[i]);
+	}
+	free(states);
+	return 0;
+}
+
+void pool_lcm_table_state_release(pool_lcm_table_state_t *msg)
+{
+	free(msg->balls);
+	msg->balls = NULL;
+	msg->num_balls = 0;
+}
+
+static uint32_t pool_lcm_be32(const unsigned char *p)
+{
+	return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
+}
+
+int pool_lcm_request_decode(const void *data, size_t size, pool_lcm_shot_request_t *out,
+                            char *err, size_t err_size)
+{
+	// Layout: 8-byte fingerprint, int64 utime, int64 request_id, int32 length (with NUL), bytes.
+	enum { header = 8 + 8 + 8 + 4 };
+	const unsigned char *bytes = data;
+	memset(out, 0, sizeof *out);
+	if (data == NULL || size < header || size > (size_t)0x7fffffff) {
+		snprintf(err, err_size, "undecodable shot_request_t: %zu bytes", size);
+		return -1;
+	}
+	uint32_t length = pool_lcm_be32(bytes + 24);
+	if (length < 1 || length != size - header || bytes[size - 1] != '\0') {
+		snprintf(err, err_size,
+		         "undecodable shot_request_t: scenario_json length %u in a %zu-byte message",
+		         length, size);
+		return -1;
+	}
+	if (pool_lcm_shot_request_t_decode(data, 0, (int)size, out) < 0) {
+		pool_lcm_shot_request_t_decode_cleanup(out);
+		memset(out, 0, sizeof *out);
+		snprintf(err, err_size, "undecodable shot_request_t: wrong type fingerprint");
+		return -1;
+	}
+	return 0;
+}

@@ -1,0 +1,80 @@
+// Conversion between libpool simulations and the pool_lcm message types (lcm_types/), shared by
+// pool-sim --lcm-url, pool-shot-server and the tests. Messages built here own heap arrays: release
+// them with the matching *_release function, never with lcm-gen's *_destroy.
+#ifndef POOL_TOOLS_LCM_CONVERT_H
+#define POOL_TOOLS_LCM_CONVERT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "pool/pool.h"
+#include "pool_lcm_ball_state_t.h"
+#include "pool_lcm_event_t.h"
+#include "pool_lcm_shot_request_t.h"
+#include "pool_lcm_shot_t.h"
+#include "pool_lcm_table_state_t.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Channel of scenarios to simulate (shot_request_t).
+#define POOL_LCM_CHANNEL_SHOT_REQUEST "POOL_SHOT_REQUEST"
+/// Channel of finished shots (shot_t).
+#define POOL_LCM_CHANNEL_SHOT "POOL_SHOT"
+/// Channel of events as they are produced (event_t).
+#define POOL_LCM_CHANNEL_EVENT "POOL_EVENT"
+/// Channel of real-time playback frames (table_state_t).
+#define POOL_LCM_CHANNEL_STATE "POOL_STATE"
+/// Channel of engine comparison results (bench_result_t).
+#define POOL_LCM_CHANNEL_BENCH "POOL_BENCH"
+/// URL used when neither --lcm-url nor LCM_DEFAULT_URL is given (INTERFACES.md).
+#define POOL_LCM_DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0"
+
+/// Microseconds since the Unix epoch (wall clock), the utime of every message.
+int64_t pool_lcm_utime_now(void);
+
+/// The URL to open: the given one, else $LCM_DEFAULT_URL, else POOL_LCM_DEFAULT_URL.
+const char *pool_lcm_resolve_url(const char *url);
+
+/// Copies a libpool ball state into a message field.
+void pool_lcm_ball_from_state(const pool_ball_state *state, pool_lcm_ball_state_t *out);
+
+/// Fills an event message for processed event `seq` of sim (balls: its after-states).
+/// Returns 0, or -1 when memory runs out or seq is out of range.
+int pool_lcm_event_fill(const pool_sim *sim, int seq, int64_t shot_id, int64_t utime,
+                        pool_lcm_event_t *out);
+
+/// Frees what pool_lcm_event_fill allocated; safe on a zeroed message.
+void pool_lcm_event_release(pool_lcm_event_t *msg);
+
+/// Fills a shot message from a (finished or stopped) sim: every event, and the final states of
+/// every ball at pool_sim_time. Returns 0, or -1 when memory runs out or the sim refuses.
+int pool_lcm_shot_fill(const pool_sim *sim, int64_t shot_id, int64_t request_id, int64_t utime,
+                       pool_lcm_shot_t *out);
+
+/// Fills a shot message that carries only an error (no events, no balls); copies message.
+int pool_lcm_shot_fill_error(int64_t shot_id, int64_t request_id, int64_t utime,
+                             const char *message, pool_lcm_shot_t *out);
+
+/// Frees what pool_lcm_shot_fill / pool_lcm_shot_fill_error allocated; safe on a zeroed message.
+void pool_lcm_shot_release(pool_lcm_shot_t *msg);
+
+/// Fills a playback frame: every ball at simulated time t (s), which the sim must have reached.
+int pool_lcm_table_state_fill(const pool_sim *sim, double t, int64_t shot_id, int64_t utime,
+                              pool_lcm_table_state_t *out);
+
+/// Frees what pool_lcm_table_state_fill allocated; safe on a zeroed message.
+void pool_lcm_table_state_release(pool_lcm_table_state_t *msg);
+
+/// Decodes a shot_request_t datagram after checking its framing by hand (lcm-gen's decoder trusts
+/// the string length and terminator). Returns 0, or -1 with a message in err; on success release
+/// with pool_lcm_shot_request_t_decode_cleanup.
+int pool_lcm_request_decode(const void *data, size_t size, pool_lcm_shot_request_t *out,
+                            char *err, size_t err_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,41 @@
+// Live publication of a shot while pool-sim simulates it: each event on POOL_EVENT as it is
+// produced, optional real-time playback frames on POOL_STATE, the finished shot on POOL_SHOT.
+// pool-sim calls this only when built with LCM (POOL_HAVE_LCM).
+#ifndef POOL_TOOLS_LCM_SIM_PUBLISH_H
+#define POOL_TOOLS_LCM_SIM_PUBLISH_H
+
+#include <stddef.h>
+
+#include "pool/pool.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// An open LCM connection plus the shot being published.
+typedef struct pool_lcm_sim_publisher pool_lcm_sim_publisher;
+
+/// Opens LCM on url (NULL or empty: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0).
+/// playback_hz > 0 paces the shot in real time and publishes every ball on POOL_STATE that many
+/// times per simulated second. Returns NULL with a message in err when LCM cannot be opened.
+pool_lcm_sim_publisher *pool_lcm_sim_publisher_create(const char *url, double playback_hz,
+                                                      char *err, size_t err_size);
+
+/// Per-event hook (pool-sim's sim_event_hook shape; user is the publisher): publishes the event
+/// on POOL_EVENT; with playback, first publishes the frames before it, each at its wall time.
+/// Call it for every event in order, the strike included, right after the sim produced it.
+void pool_lcm_sim_publisher_event(const pool_sim *sim, const pool_event *event, void *user);
+
+/// After the last event: the remaining playback frames up to pool_sim_time, then the shot on
+/// POOL_SHOT. Returns 0, or -1 with a message in err (the first failure of the whole shot).
+int pool_lcm_sim_publisher_finish(pool_lcm_sim_publisher *publisher, const pool_sim *sim,
+                                  char *err, size_t err_size);
+
+/// Closes LCM and frees the publisher. NULL is a no-op.
+void pool_lcm_sim_publisher_destroy(pool_lcm_sim_publisher *publisher);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
