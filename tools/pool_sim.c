@@ -10,6 +10,9 @@
 
 #include "atomic_file.h"
 #include "scenario.h"
+#ifdef POOL_HAVE_LCM
+#include "sim_publish.h"
+#endif
 
 #define EXIT_BAD_INPUT 2
 #define EXIT_INTERNAL 1
@@ -23,6 +26,9 @@ typedef struct sim_options {
 	bool pretty;               ///< indented JSON
 	bool summary;              ///< human-readable summary on standard error
 	bool help;                 ///< print usage and exit 0
+	bool lcm;                  ///< publish the shot on LCM (--lcm-url or --playback given)
+	const char *lcm_url;       ///< NULL = $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0
+	double playback_hz;        ///< > 0: real-time frames on POOL_STATE at this rate
 } sim_options;
 
 /// Called after every event appended to the simulation (the strike included), in order.
@@ -40,6 +46,11 @@ static const char usage_text[] =
 	"                     every event (for plots and animations)\n"
 	"  --pretty           indent the JSON\n"
 	"  --summary          print events by type, pocketed balls and times on standard error\n"
+	"  --lcm-url URL      publish each event on POOL_EVENT as it is produced and the shot on\n"
+	"                     POOL_SHOT (default URL $LCM_DEFAULT_URL, else\n"
+	"                     udpm://239.255.76.67:7667?ttl=0)\n"
+	"  --playback HZ      with LCM, run in real time and publish every ball on POOL_STATE HZ\n"
+	"                     times per simulated second\n"
 	"  -h, --help         show this help\n"
 	"\n"
 	"Exit status: 0 success, 2 bad input or usage (message names the field), 1 internal error.\n";
@@ -81,6 +92,23 @@ static int parse_options(int argc, char **argv, sim_options *o) {
 			o->pretty = true;
 		} else if (strcmp(a, "--summary") == 0) {
 			o->summary = true;
+		} else if (strcmp(a, "--lcm-url") == 0 || strcmp(a, "--playback") == 0) {
+#ifndef POOL_HAVE_LCM
+			return usage_error("option %s needs a pool-sim built with LCM", a);
+#endif
+			if (i + 1 >= argc)
+				return usage_error("option %s needs a value", a);
+			o->lcm = true;
+			if (strcmp(a, "--lcm-url") == 0) {
+				o->lcm_url = argv[++i];
+				continue;
+			}
+			char *end = NULL;
+			errno = 0;
+			double hz = strtod(argv[++i], &end);
+			if (errno || end == argv[i] || *end || !isfinite(hz) || hz <= 0.0)
+				return usage_error("--playback: '%s' is not a positive rate in Hz", argv[i]);
+			o->playback_hz = hz;
 		} else {
 			return usage_error("unknown option '%s'", a);
 		}
@@ -168,8 +196,37 @@ int main(int argc, char **argv) {
 		return r == POOL_ERR_OUT_OF_MEMORY || r == POOL_ERR_INTERNAL ? EXIT_INTERNAL : EXIT_BAD_INPUT;
 	}
 
+	sim_event_hook hook = NULL;
+	void *hook_user = NULL;
+#ifdef POOL_HAVE_LCM
+	pool_lcm_sim_publisher *publisher = NULL;
+	if (o.lcm) {
+		publisher = pool_lcm_sim_publisher_create(o.lcm_url, o.playback_hz, err, sizeof err);
+		if (!publisher) {
+			fprintf(stderr, "pool-sim: %s\n", err);
+			pool_sim_destroy(sim);
+			pool_scenario_free(&scenario);
+			return EXIT_BAD_INPUT;
+		}
+		hook = pool_lcm_sim_publisher_event;
+		hook_user = publisher;
+	}
+#endif
 	clock_t start = clock();
-	r = run_shot(sim, NULL, NULL);
+	r = run_shot(sim, hook, hook_user);
+#ifdef POOL_HAVE_LCM
+	if (publisher) {
+		bool published = r != POOL_OK ||
+		                 pool_lcm_sim_publisher_finish(publisher, sim, err, sizeof err) == 0;
+		pool_lcm_sim_publisher_destroy(publisher);
+		if (!published) {
+			fprintf(stderr, "pool-sim: %s\n", err);
+			pool_sim_destroy(sim);
+			pool_scenario_free(&scenario);
+			return EXIT_INTERNAL;
+		}
+	}
+#endif
 	double cpu = (double)(clock() - start) / CLOCKS_PER_SEC;
 	if (r != POOL_OK) {
 		fprintf(stderr, "pool-sim: simulation failed at t = %.17g s: %s\n", pool_sim_time(sim),
