@@ -60,10 +60,11 @@ static int pool_lcm_event_fill_from(const pool_sim *sim, const pool_event *event
 	out->seq = seq;
 	out->t = event->time;
 	out->type = pool_lcm_name_or_empty(pool_event_type_name(event->type));
-	out->rail = pool_lcm_name_or_empty(event->type == POOL_EVENT_BALL_CUSHION
-	                                       ? pool_rail_name(event->rail) : NULL);
-	out->pocket = pool_lcm_name_or_empty(event->type == POOL_EVENT_POCKET
-	                                         ? pool_pocket_name(event->pocket) : NULL);
+	// Like the result file: a rail or pocket whenever the event names one.
+	out->rail = pool_lcm_name_or_empty(event->rail != POOL_RAIL_NONE ? pool_rail_name(event->rail)
+	                                                                 : NULL);
+	out->pocket = pool_lcm_name_or_empty(
+		event->pocket != POOL_POCKET_NONE ? pool_pocket_name(event->pocket) : NULL);
 	out->num_balls = event->ball_count;
 	if (event->ball_count > 0) {
 		out->balls = calloc((size_t)event->ball_count, sizeof *out->balls);
