@@ -1,0 +1,25 @@
+// Petit's impulse law with sticking, one function for ball-ball, ball-cushion and ball-cloth
+// (PHYSICS.md, "Collisions").
+#ifndef POOL_COLLISION_H
+#define POOL_COLLISION_H
+
+#include "pool/ball.h"
+#include "pool/event.h"
+#include "pool/table.h"
+
+/// One impulse between body 1 (a ball) and body 2 (a ball, or an immovable obstacle when
+/// mass_ratio = M1/M2 = 0; then v2/w2 are taken as zero and body2 may be NULL).
+/// n: unit normal pointing towards body 1. N: restitution, mu: friction of the pair.
+/// Returns the normal impulse P (N s, > 0 when the bodies were approaching).
+double pool_collide(pool_ball_state *b1, double R1, double M1, pool_ball_state *b2, double R2,
+                    double mass_ratio, pool_vec3 n, double N, double mu);
+
+/// Horizontal distance (m) from the nose line at which a ball on the cloth touches it:
+/// sqrt(R^2 - (h - R)^2).
+double pool_cushion_contact_distance(double R, double h);
+
+/// Contact normal of a ball centred at pos against a rail's nose (height h): from the nearest
+/// point of the nose line to the centre, normalised.
+pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail);
+
+#endif

@@ -1,0 +1,37 @@
+// The event list: an indexed binary min-heap holding each ball's next predicted event.
+// Keys are absolute times with a deterministic tie-break (time, event kind, ball ids, slot).
+#ifndef POOL_EVENT_QUEUE_H
+#define POOL_EVENT_QUEUE_H
+
+#include <stdint.h>
+
+/// Ordering key of a predicted event.
+typedef struct pool_event_key {
+	double time;    ///< s, absolute; INFINITY when the slot has no event
+	int kind;       ///< pool_event_type
+	int32_t id_lo;  ///< smaller ball id involved
+	int32_t id_hi;  ///< larger ball id involved (= id_lo for one ball)
+	int slot;       ///< owning slot (ball index), last resort so the order is total
+} pool_event_key;
+
+/// -1, 0, 1 as a orders before, equal to, after b.
+int pool_event_key_cmp(const pool_event_key *a, const pool_event_key *b);
+
+/// Heap over `count` slots; the caller owns the arrays (capacity >= count each).
+typedef struct pool_event_queue {
+	pool_event_key *keys; ///< by slot
+	int *heap;            ///< slots in heap order
+	int *pos;             ///< heap position of each slot
+	int count;
+} pool_event_queue;
+
+/// Puts slots 0..count-1 in the heap with their current keys (O(count)).
+void pool_event_queue_build(pool_event_queue *q, int count);
+
+/// Sets a slot's key and restores the heap order (O(log count)).
+void pool_event_queue_update(pool_event_queue *q, int slot, const pool_event_key *key);
+
+/// Slot with the smallest key (count must be > 0).
+static inline int pool_event_queue_top(const pool_event_queue *q) { return q->heap[0]; }
+
+#endif

@@ -1,0 +1,33 @@
+// Event prediction: ball-ball contact (quartic), cushion and pocket contact (quadratics).
+#ifndef POOL_PREDICT_H
+#define POOL_PREDICT_H
+
+#include "pool/ball.h"
+#include "pool/event.h"
+#include "pool/table.h"
+
+/// Normal approach speed (m/s) below which touching bodies are not treated as colliding.
+/// Every accepted collision reverses the normal relative velocity (times the restitution), so
+/// a pair cannot be found colliding again at the same instant unless it is approaching faster
+/// than this: this is what ends chains of simultaneous contacts (frozen racks). Rounding of
+/// velocities is ~1e-15 m/s; 1e-9 m/s over a whole shot moves a ball by nanometres.
+#define POOL_APPROACH_EPS 1e-9
+
+/// Earliest tau in [0, T] at which two balls of radius R come into contact while approaching,
+/// with relative motion p(tau) = dp + dv tau + da tau^2 (da = half the difference of the
+/// accelerations); INFINITY when none. Touching balls (gap <= POOL_TOUCH_TOLERANCE) that
+/// approach faster than POOL_APPROACH_EPS give 0; touching balls that separate give a later
+/// contact or none.
+double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T);
+
+/// Earliest tau in [0, T] at which a ball on the cloth (state s, centre acceleration acc)
+/// touches a cushion nose; *rail receives the rail, and *pocket the pocket when the contact
+/// falls inside a pocket mouth (else POOL_POCKET_NONE). INFINITY when none.
+double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
+                            pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket);
+
+/// Pocket whose mouth contains a contact with `rail` at coordinate `along` (x on the south and
+/// north rails, y on the west and east rails), or POOL_POCKET_NONE.
+pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along);
+
+#endif

@@ -1,0 +1,39 @@
+// The five-parameter cue strike (PHYSICS.md "Cue strike", Leckie & Greenspan impulse).
+#include "pool/strike.h"
+
+#include <math.h>
+
+#include "error.h"
+#include "vec3.h"
+
+pool_result pool_strike_velocities(const pool_params *params, const pool_strike *strike,
+                                   pool_vec3 *vel, pool_vec3 *omega, pool_error *error) {
+	if (!params || !strike || !vel || !omega)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "strike: missing argument");
+	const double R = params->ball_radius, m = params->ball_mass, M = params->cue_mass;
+	const double fields[5] = {strike->speed, strike->phi, strike->theta, strike->a, strike->b};
+	static const char *const names[5] = {"strike.speed", "strike.phi", "strike.theta", "strike.a", "strike.b"};
+	for (int i = 0; i < 5; ++i)
+		if (!isfinite(fields[i]))
+			return pool_error_set(error, POOL_ERR_NON_FINITE, "%s: must be finite", names[i]);
+	if (!(strike->speed > 0.0))
+		return pool_error_set(error, POOL_ERR_BAD_STRIKE, "strike.speed: must be > 0");
+	if (!(strike->theta >= 0.0 && strike->theta < 1.57079632679489661923))
+		return pool_error_set(error, POOL_ERR_BAD_STRIKE, "strike.theta: must be in [0, pi/2) rad");
+	const double c2 = R * R - strike->a * strike->a - strike->b * strike->b;
+	if (!(c2 > 0.0))
+		return pool_error_set(error, POOL_ERR_BAD_STRIKE, "strike.a: a^2 + b^2 must be < R^2");
+	const pool_vec3 k = pool_v3(0.0, 0.0, 1.0);
+	const pool_vec3 j = pool_v3(cos(strike->phi), sin(strike->phi), 0.0);
+	const pool_vec3 r = pool_v3_cross(j, k);
+	const pool_vec3 d = pool_v3_madd(pool_v3_scale(j, cos(strike->theta)), -sin(strike->theta), k);
+	const double c = sqrt(c2);
+	const pool_vec3 Q = pool_v3_madd(pool_v3_madd(pool_v3_scale(r, strike->a), strike->b, k), -c, j);
+	const pool_vec3 qd = pool_v3_cross(Q, d);
+	const double F = 2.0 * m * strike->speed /
+	                 (1.0 + m / M + (5.0 / (2.0 * R * R)) * pool_v3_dot(qd, qd));
+	const double I = 0.4 * m * R * R;
+	*vel = pool_v3_scale(d, F / m);
+	*omega = pool_v3_scale(qd, F / I);
+	return pool_error_ok(error);
+}

@@ -1,0 +1,110 @@
+// Table presets, default parameters and their validation (PHYSICS.md defaults table).
+#include "pool/table.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "error.h"
+
+static pool_table_def wpa(double length, double width) {
+	pool_table_def t = {length, width, 0.03629, 0.1143, 0.127};
+	return t;
+}
+
+pool_table_def pool_default_table_def(void) { return wpa(2.54, 1.27); }
+
+pool_result pool_table_preset(const char *name, pool_table_def *table) {
+	if (!name || !table)
+		return POOL_ERR_INVALID_ARGUMENT;
+	if (strcmp(name, "wpa-9ft") == 0)
+		*table = wpa(2.54, 1.27);
+	else if (strcmp(name, "wpa-8ft") == 0)
+		*table = wpa(92 * 0.0254, 46 * 0.0254);
+	else if (strcmp(name, "wpa-7ft") == 0)
+		*table = wpa(78 * 0.0254, 39 * 0.0254);
+	else
+		return POOL_ERR_UNKNOWN_PRESET;
+	return POOL_OK;
+}
+
+pool_params pool_default_params(void) {
+	pool_params p;
+	p.g = 9.81;
+	p.mu_slide = 0.2;
+	p.mu_roll = 0.01;
+	p.mu_spin = 0.0127;
+	p.mu_ball = 0.06;
+	p.e_ball = 0.95;
+	p.mu_cushion = 0.2;
+	p.e_cushion = 0.85;
+	p.mu_table = 0.2;
+	p.e_table = 0.5;
+	p.ball_radius = 0.028575;
+	p.ball_mass = 0.17;
+	p.cue_mass = 0.54;
+	return p;
+}
+
+// Range checks shared by the validators; each names the field in the message.
+static pool_result positive(double x, const char *field, pool_error *error) {
+	if (!isfinite(x))
+		return pool_error_set(error, POOL_ERR_NON_FINITE, "%s: must be finite", field);
+	if (!(x > 0.0))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "%s: must be > 0", field);
+	return POOL_OK;
+}
+
+static pool_result non_negative(double x, const char *field, pool_error *error) {
+	if (!isfinite(x))
+		return pool_error_set(error, POOL_ERR_NON_FINITE, "%s: must be finite", field);
+	if (!(x >= 0.0))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "%s: must be >= 0", field);
+	return POOL_OK;
+}
+
+static pool_result unit_interval(double x, const char *field, pool_error *error) {
+	if (!isfinite(x))
+		return pool_error_set(error, POOL_ERR_NON_FINITE, "%s: must be finite", field);
+	if (!(x >= 0.0 && x <= 1.0))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "%s: must be in [0, 1]", field);
+	return POOL_OK;
+}
+
+pool_result pool_table_def_validate(const pool_table_def *t, pool_error *error) {
+	pool_result r;
+	if (!t)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "table: missing");
+	if ((r = positive(t->length, "table.length", error)) ||
+	    (r = positive(t->width, "table.width", error)) ||
+	    (r = positive(t->cushion_height, "table.cushion_height", error)) ||
+	    (r = non_negative(t->corner_mouth, "table.corner_mouth", error)) ||
+	    (r = non_negative(t->side_mouth, "table.side_mouth", error)))
+		return r;
+	if (t->side_mouth >= t->length)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "table.side_mouth: must be < table.length");
+	if (t->corner_mouth / sqrt(2.0) >= 0.5 * fmin(t->length, t->width))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "table.corner_mouth: must be < width / sqrt(2) and length / sqrt(2)");
+	return pool_error_ok(error);
+}
+
+pool_result pool_params_validate(const pool_params *p, pool_error *error) {
+	pool_result r;
+	if (!p)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "params: missing");
+	if ((r = positive(p->g, "params.g", error)) ||
+	    (r = non_negative(p->mu_slide, "params.mu_slide", error)) ||
+	    (r = non_negative(p->mu_roll, "params.mu_roll", error)) ||
+	    (r = non_negative(p->mu_spin, "params.mu_spin", error)) ||
+	    (r = non_negative(p->mu_ball, "params.mu_ball", error)) ||
+	    (r = unit_interval(p->e_ball, "params.e_ball", error)) ||
+	    (r = non_negative(p->mu_cushion, "params.mu_cushion", error)) ||
+	    (r = unit_interval(p->e_cushion, "params.e_cushion", error)) ||
+	    (r = non_negative(p->mu_table, "params.mu_table", error)) ||
+	    (r = unit_interval(p->e_table, "params.e_table", error)) ||
+	    (r = positive(p->ball_radius, "params.ball_radius", error)) ||
+	    (r = positive(p->ball_mass, "params.ball_mass", error)) ||
+	    (r = positive(p->cue_mass, "params.cue_mass", error)))
+		return r;
+	return pool_error_ok(error);
+}
