@@ -1,0 +1,268 @@
+// Unit tests of the scenario parser, the JSON number formatting and the result writer.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <float.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "json_writer.h"
+#include "scenario.h"
+
+#define R 0.028575
+
+static int parse(const char *text, pool_scenario *s, char *err, size_t n) {
+	return pool_scenario_parse(text, strlen(text), s, err, n);
+}
+
+static void test_minimal_scenario_takes_defaults(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[256];
+	const char *doc = "{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 3, \"pos\": [1, 0.5]}]}";
+	assert_int_equal(parse(doc, &s, err, sizeof err), 0);
+	pool_sim_def d = pool_default_sim_def();
+	assert_memory_equal(&s.def.table, &d.table, sizeof d.table);
+	assert_memory_equal(&s.def.params, &d.params, sizeof d.params);
+	assert_true(s.def.airborne == d.airborne);
+	assert_true(s.def.max_time == d.max_time);
+	assert_int_equal(s.def.max_events, d.max_events);
+	assert_int_equal(s.ball_count, 1);
+	assert_int_equal(s.balls[0].id, 3);
+	assert_true(s.balls[0].pos.x == 1.0 && s.balls[0].pos.y == 0.5);
+	assert_true(s.balls[0].pos.z == d.params.ball_radius);
+	assert_int_equal(s.balls[0].motion, POOL_MOTION_STATIONARY);
+	assert_false(s.has_strike);
+	pool_scenario_free(&s);
+	assert_null(s.balls);
+	pool_scenario_free(&s); // twice is fine
+}
+
+static void test_fields_are_read(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[256];
+	const char *doc =
+		"{\"format\": \"libpool-scenario/1\","
+		" \"table\": {\"preset\": \"wpa-7ft\", \"side_mouth\": 0.13},"
+		" \"params\": {\"mu_ball\": 0.05, \"ball_radius\": 0.03125},"
+		" \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]},"
+		"             {\"id\": 1, \"pos\": [1.0, 0.5, 0.03125], \"vel\": [0.5, 0, 0], \"omega\": [0, 16, 0]}],"
+		" \"strike\": {\"ball\": 0, \"speed\": 2, \"phi\": 90, \"theta\": 10, \"a\": 0.01, \"b\": -0.005},"
+		" \"options\": {\"airborne\": true, \"max_time\": 30, \"max_events\": 777}}";
+	assert_int_equal(parse(doc, &s, err, sizeof err), 0);
+	pool_table_def t7;
+	assert_int_equal(pool_table_preset("wpa-7ft", &t7), POOL_OK);
+	assert_true(s.def.table.length == t7.length && s.def.table.width == t7.width);
+	assert_true(s.def.table.side_mouth == 0.13);
+	assert_true(s.def.params.mu_ball == 0.05);
+	assert_true(s.def.params.mu_slide == pool_default_params().mu_slide);
+	assert_true(s.balls[0].pos.z == 0.03125); // a 2D position sits on the cloth: z = R
+	assert_int_equal(s.balls[1].motion, POOL_MOTION_ROLLING); // v = R w (exact in binary): no slip
+	assert_true(s.has_strike);
+	assert_int_equal(s.strike_ball, 0);
+	assert_true(s.strike.speed == 2.0);
+	assert_true(fabs(s.strike.phi - 3.14159265358979323846 / 2) < 1e-15);
+	assert_true(fabs(s.strike.theta - 10 * 3.14159265358979323846 / 180) < 1e-15);
+	assert_true(s.strike.a == 0.01 && s.strike.b == -0.005);
+	assert_true(s.def.airborne);
+	assert_true(s.def.max_time == 30.0);
+	assert_int_equal(s.def.max_events, 777);
+	pool_scenario_free(&s);
+}
+
+static void test_errors_name_the_field(void **state) {
+	(void)state;
+	static const struct {
+		const char *doc;
+		const char *expect;
+	} cases[] = {
+		{"{", "(document): malformed JSON at line 1"},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}], \"x\": 1}",
+		 "x: unknown field"},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]},"
+		 " {\"id\": 1, \"pos\": [0.55415, 0.5]}]}",
+		 "balls[1].pos: overlaps ball 0 by 0.003 m"},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]},"
+		 " {\"id\": 0, \"pos\": [1.5, 0.5]}]}",
+		 "balls[1].id"},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [3.5, 0.5]}]}",
+		 "balls[0]"},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}],"
+		 " \"strike\": {\"ball\": 0, \"speed\": 1, \"a\": 0.02, \"b\": 0.021}}",
+		 "strike"},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}],"
+		 " \"strike\": {\"ball\": 4, \"speed\": 1}}",
+		 "strike.ball: no ball has id 4"},
+		{"{\"format\": \"libpool-scenario/1\", \"params\": {\"mu_roll\": -0.01},"
+		 " \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}",
+		 "params.mu_roll"},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [0.5, 1e300]}]}",
+		 "balls[0].pos[1]: "},
+		{"{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5], \"vel\": \"fast\"}]}",
+		 "balls[0].vel: must be an array"},
+		{"{\"format\": \"libpool-scenario/0\", \"balls\": []}", "format: expected"},
+		{"{\"format\": \"libpool-scenario/1\", \"table\": {\"preset\": 9},"
+		 " \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}",
+		 "table.preset: must be a string"},
+		{"{\"format\": \"libpool-scenario/1\", \"options\": {\"max_events\": 0},"
+		 " \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}",
+		 "options.max_events"},
+	};
+	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+		pool_scenario s;
+		char err[256] = "";
+		int r = parse(cases[i].doc, &s, err, sizeof err);
+		if (r != -1 || strncmp(err, cases[i].expect, strlen(cases[i].expect)) != 0)
+			fail_msg("case %zu: got %d \"%s\", expected a message starting \"%s\"", i, r, err,
+			         cases[i].expect);
+		assert_null(s.balls);
+		assert_int_equal(s.ball_count, 0);
+	}
+}
+
+static void test_tiny_error_buffer_is_safe(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[8];
+	assert_int_equal(parse("{\"nope\": 1}", &s, err, sizeof err), -1);
+	assert_int_equal(strlen(err), 7);
+	assert_int_equal(parse("{\"nope\": 1}", &s, NULL, 0), -1);
+}
+
+static void test_load_file_names_the_path(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[256];
+	assert_int_equal(pool_scenario_load_file("/nonexistent/x.json", &s, err, sizeof err), -1);
+	assert_non_null(strstr(err, "/nonexistent/x.json: "));
+}
+
+static void test_numbers_round_trip_with_few_digits(void **state) {
+	(void)state;
+	const double values[] = {0.1, 1.0 / 3.0, 2.54, -0.028575, 1e-300, 5e-324, DBL_MAX, -2.5e17,
+	                         0.1 + 0.2, 123456789.123456789, 1.0 - DBL_EPSILON};
+	char text[32];
+	for (size_t i = 0; i < sizeof values / sizeof values[0]; ++i) {
+		pool_jw_format_double(values[i], text);
+		assert_true(strtod(text, NULL) == values[i]);
+	}
+	pool_jw_format_double(0.1, text);
+	assert_string_equal(text, "0.1");
+	pool_jw_format_double(0.1 + 0.2, text);
+	assert_string_equal(text, "0.30000000000000004");
+	pool_jw_format_double(NAN, text);
+	assert_string_equal(text, "null");
+}
+
+static void test_writer_escapes_and_nests(void **state) {
+	(void)state;
+	pool_jw w;
+	pool_jw_init(&w, false);
+	pool_jw_object(&w, false);
+	pool_jw_key(&w, "s");
+	pool_jw_string(&w, "a\"b\\c\n\x01");
+	pool_jw_key(&w, "v");
+	pool_jw_vec3(&w, (pool_vec3){1, -2.5, 0});
+	pool_jw_key(&w, "e");
+	pool_jw_array(&w, false);
+	pool_jw_end(&w, ']');
+	pool_jw_end(&w, '}');
+	char *text = pool_jw_finish(&w);
+	assert_string_equal(text, "{\"s\":\"a\\\"b\\\\c\\n\\u0001\",\"v\":[1,-2.5,0],\"e\":[]}\n");
+	free(text);
+}
+
+static const char shot_doc[] =
+	"{\"format\": \"libpool-scenario/1\","
+	" \"balls\": [{\"id\": 0, \"pos\": [0.635, 0.635]}, {\"id\": 1, \"pos\": [1.905, 0.7]},"
+	"             {\"id\": 2, \"pos\": [2.0, 1.0]}],"
+	" \"strike\": {\"ball\": 0, \"speed\": 2.5, \"phi\": 3, \"a\": 0.005, \"b\": 0.01}}";
+
+static char *simulate(pool_sim **sim, const pool_scenario *s, double dt, bool pretty) {
+	pool_error e = {{0}};
+	pool_result r = pool_scenario_setup(s, sim, &e);
+	if (r != POOL_OK)
+		fail_msg("setup: %s", e.message);
+	assert_int_equal(pool_sim_run(*sim), POOL_OK);
+	pool_result_options o = {.sample_dt = dt, .pretty = pretty, .def = &s->def};
+	char *text = pool_result_json(*sim, &o);
+	assert_non_null(text);
+	return text;
+}
+
+static void test_result_document(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[256];
+	assert_int_equal(parse(shot_doc, &s, err, sizeof err), 0);
+	pool_sim *sim = NULL;
+	char *a = simulate(&sim, &s, 0.0, false);
+	// Reusing the simulation (reset path) gives the same bytes: the shot is deterministic.
+	char *b = simulate(&sim, &s, 0.0, false);
+	assert_string_equal(a, b);
+	char *pretty = simulate(&sim, &s, 0.05, true);
+
+	json_error_t jerr;
+	json_t *doc = json_loads(a, 0, &jerr);
+	assert_non_null(doc);
+	assert_string_equal(json_string_value(json_object_get(doc, "format")), "libpool-result/1");
+	int count = 0;
+	pool_sim_events(sim, &count);
+	json_t *events = json_object_get(doc, "events");
+	assert_int_equal((int)json_array_size(events), count);
+	assert_int_equal(json_integer_value(json_object_get(json_object_get(doc, "stats"), "events")), count);
+	assert_int_equal(json_array_size(json_object_get(doc, "final")), 3);
+	json_t *first = json_array_get(events, 0);
+	assert_string_equal(json_string_value(json_object_get(first, "type")), "strike");
+	double last = 0.0;
+	size_t i;
+	json_t *ev;
+	json_array_foreach(events, i, ev) {
+		double t = json_number_value(json_object_get(ev, "t"));
+		assert_true(t >= last);
+		last = t;
+		assert_int_equal(json_array_size(json_object_get(ev, "after")),
+		                 json_array_size(json_object_get(ev, "balls")));
+	}
+	assert_null(json_object_get(doc, "samples"));
+
+	json_t *sampled = json_loads(pretty, 0, &jerr);
+	assert_non_null(sampled);
+	json_t *balls = json_object_get(json_object_get(sampled, "samples"), "balls");
+	assert_int_equal(json_array_size(balls), 3);
+	json_t *cue = json_array_get(balls, 0);
+	assert_int_equal(json_array_size(json_object_get(cue, "t")), json_array_size(json_object_get(cue, "pos")));
+	assert_true(json_array_size(json_object_get(cue, "t")) > 10);
+	// The document without samples equals the sampled one minus "samples".
+	json_object_del(sampled, "samples");
+	assert_true(json_equal(sampled, doc));
+
+	json_decref(sampled);
+	json_decref(doc);
+	free(a);
+	free(b);
+	free(pretty);
+	pool_sim_destroy(sim);
+	pool_scenario_free(&s);
+}
+
+int main(void) {
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_minimal_scenario_takes_defaults),
+		cmocka_unit_test(test_fields_are_read),
+		cmocka_unit_test(test_errors_name_the_field),
+		cmocka_unit_test(test_tiny_error_buffer_is_safe),
+		cmocka_unit_test(test_load_file_names_the_path),
+		cmocka_unit_test(test_numbers_round_trip_with_few_digits),
+		cmocka_unit_test(test_writer_escapes_and_nests),
+		cmocka_unit_test(test_result_document),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
