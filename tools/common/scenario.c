@@ -216,7 +216,7 @@ static int parse_options(parse_ctx *ctx, json_t *options, pool_sim_def *def) {
 	}
 	v = json_object_get(options, "max_events");
 	if (v) {
-		int64_t n;
+		int64_t n = 0;
 		if (get_int(ctx, v, "options.max_events", 1, INT32_MAX, &n))
 			return -1;
 		def->max_events = (int)n;
@@ -253,7 +253,7 @@ static int parse_ball(parse_ctx *ctx, json_t *ball, size_t i, double radius, poo
 	json_t *id = json_object_get(ball, "id");
 	if (!id)
 		return fail(ctx, "%s.id: missing", path);
-	int64_t id_value;
+	int64_t id_value = 0;
 	snprintf(sub, sizeof sub, "%s.id", path);
 	if (get_int(ctx, id, sub, INT32_MIN, INT32_MAX, &id_value))
 		return -1;
@@ -286,7 +286,7 @@ static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
 	json_t *ball = json_object_get(strike, "ball");
 	if (!ball)
 		return fail(ctx, "strike.ball: missing");
-	int64_t id;
+	int64_t id = 0;
 	if (get_int(ctx, ball, "strike.ball", INT32_MIN, INT32_MAX, &id))
 		return -1;
 	s->strike_ball = (int)id;
