@@ -1,0 +1,270 @@
+// In-process tests of the libpool <-> pool_lcm conversion (tools/lcm/lcm_convert.c): messages
+// built from a simulated shot, sent through liblcm's memq:// provider and decoded again, must
+// carry exactly the simulation's events and states.
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <lcm/lcm.h>
+
+#include "lcm_convert.h"
+#include "scenario.h"
+
+typedef struct fixture {
+	pool_scenario scenario;
+	pool_sim *sim;
+} fixture;
+
+static int setup_shot(void **state, const char *name)
+{
+	fixture *f = calloc(1, sizeof *f);
+	char path[1024], err[512];
+	snprintf(path, sizeof path, "%s/%s.json", POOL_LCM_TEST_DATA_DIR, name);
+	if (pool_scenario_load_file(path, &f->scenario, err, sizeof err) != 0) {
+		fail_msg("%s: %s", path, err);
+	}
+	pool_error perr = {{0}};
+	assert_int_equal(pool_scenario_setup(&f->scenario, &f->sim, &perr), POOL_OK);
+	assert_int_equal(pool_sim_run(f->sim), POOL_OK);
+	*state = f;
+	return 0;
+}
+
+static int setup_cut(void **state) { return setup_shot(state, "cut"); }
+static int setup_break(void **state) { return setup_shot(state, "break"); }
+
+static int teardown(void **state)
+{
+	fixture *f = *state;
+	pool_sim_destroy(f->sim);
+	pool_scenario_free(&f->scenario);
+	free(f);
+	return 0;
+}
+
+static void assert_ball_equal(const pool_lcm_ball_state_t *m, const pool_ball_state *s)
+{
+	assert_int_equal(m->id, s->id);
+	assert_int_equal(m->state, (int)s->motion);
+	// Exact equality: the wire carries IEEE doubles unchanged.
+	double want[9] = {s->pos.x, s->pos.y, s->pos.z, s->vel.x, s->vel.y, s->vel.z,
+	                  s->omega.x, s->omega.y, s->omega.z};
+	double got[9] = {m->pos[0], m->pos[1], m->pos[2], m->vel[0], m->vel[1], m->vel[2],
+	                 m->omega[0], m->omega[1], m->omega[2]};
+	assert_memory_equal(got, want, sizeof want);
+}
+
+static void assert_event_matches(const pool_sim *sim, int seq, const pool_lcm_event_t *m)
+{
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	assert_true(seq < count);
+	const pool_event *e = &events[seq];
+	assert_int_equal(m->seq, seq);
+	assert_memory_equal(&m->t, &e->time, sizeof(double));
+	assert_string_equal(m->type, pool_event_type_name(e->type));
+	assert_string_equal(m->rail, e->rail == POOL_RAIL_NONE ? "" : pool_rail_name(e->rail));
+	assert_string_equal(m->pocket, e->pocket == POOL_POCKET_NONE ? "" : pool_pocket_name(e->pocket));
+	assert_int_equal(m->num_balls, e->ball_count);
+	const pool_ball_state *after = pool_sim_event_states(sim, e);
+	for (int i = 0; i < e->ball_count; ++i) {
+		assert_ball_equal(&m->balls[i], &after[i]);
+	}
+}
+
+typedef struct received {
+	pool_lcm_shot_t *shot;
+	int shots;
+} received;
+
+static void on_shot(const lcm_recv_buf_t *rbuf, const char *channel, const pool_lcm_shot_t *msg,
+                    void *user)
+{
+	(void)rbuf;
+	received *r = user;
+	assert_string_equal(channel, POOL_LCM_CHANNEL_SHOT);
+	r->shot = pool_lcm_shot_t_copy(msg);
+	r->shots++;
+}
+
+static void check_shot_round_trip(void **state)
+{
+	fixture *f = *state;
+	lcm_t *lcm = lcm_create("memq://");
+	assert_non_null(lcm);
+	received r = {0};
+	pool_lcm_shot_t_subscription_t *sub = pool_lcm_shot_t_subscribe(lcm, POOL_LCM_CHANNEL_SHOT,
+	                                                                 on_shot, &r);
+	pool_lcm_shot_t shot;
+	assert_int_equal(pool_lcm_shot_fill(f->sim, 77, 5, 123456, &shot), 0);
+	assert_int_equal(pool_lcm_shot_t_publish(lcm, POOL_LCM_CHANNEL_SHOT, &shot), 0);
+	pool_lcm_shot_release(&shot);
+	assert_int_equal(lcm_handle_timeout(lcm, 1000), 1);
+	assert_int_equal(r.shots, 1);
+
+	const pool_lcm_shot_t *got = r.shot;
+	int count = 0;
+	pool_sim_events(f->sim, &count);
+	assert_true(count > 1);
+	assert_int_equal(got->shot_id, 77);
+	assert_int_equal(got->request_id, 5);
+	assert_int_equal(got->utime, 123456);
+	assert_string_equal(got->error, "");
+	assert_string_equal(got->stop_reason, pool_stop_reason_name(pool_sim_stop_reason(f->sim)));
+	assert_true(got->sim_time == pool_sim_time(f->sim));
+	assert_int_equal(got->num_events, count);
+	for (int i = 0; i < count; ++i) {
+		assert_event_matches(f->sim, i, &got->events[i]);
+		assert_int_equal(got->events[i].shot_id, 77);
+	}
+	int balls = pool_sim_ball_count(f->sim);
+	assert_int_equal(got->num_balls, balls);
+	pool_ball_state *final_states = calloc((size_t)balls, sizeof *final_states);
+	assert_int_equal(pool_sim_state_at(f->sim, pool_sim_time(f->sim), final_states), POOL_OK);
+	for (int i = 0; i < balls; ++i) {
+		assert_ball_equal(&got->final_states[i], &final_states[i]);
+		// At rest (or stopped): nothing still slides or rolls.
+		if (pool_sim_stop_reason(f->sim) == POOL_STOP_REST) {
+			assert_true(got->final_states[i].state == POOL_MOTION_STATIONARY ||
+			            got->final_states[i].state == POOL_MOTION_POCKETED ||
+			            got->final_states[i].state == POOL_MOTION_OFF_TABLE);
+		}
+	}
+	free(final_states);
+	pool_lcm_shot_t_destroy(r.shot);
+	pool_lcm_shot_t_unsubscribe(lcm, sub);
+	lcm_destroy(lcm);
+}
+
+static void check_event_fill(void **state)
+{
+	fixture *f = *state;
+	int count = 0;
+	pool_sim_events(f->sim, &count);
+	for (int i = 0; i < count; ++i) {
+		pool_lcm_event_t m;
+		assert_int_equal(pool_lcm_event_fill(f->sim, i, 9, 10, &m), 0);
+		assert_event_matches(f->sim, i, &m);
+		// Round trip through the wire format.
+		int size = pool_lcm_event_t_encoded_size(&m);
+		void *buffer = malloc((size_t)size);
+		assert_int_equal(pool_lcm_event_t_encode(buffer, 0, size, &m), size);
+		pool_lcm_event_t back;
+		memset(&back, 0, sizeof back);
+		assert_int_equal(pool_lcm_event_t_decode(buffer, 0, size, &back), size);
+		assert_event_matches(f->sim, i, &back);
+		pool_lcm_event_t_decode_cleanup(&back);
+		free(buffer);
+		pool_lcm_event_release(&m);
+	}
+	pool_lcm_event_t m;
+	assert_int_equal(pool_lcm_event_fill(f->sim, count, 0, 0, &m), -1);
+	assert_int_equal(pool_lcm_event_fill(f->sim, -1, 0, 0, &m), -1);
+	pool_lcm_event_release(&m);
+}
+
+static void check_table_state(void **state)
+{
+	fixture *f = *state;
+	int balls = pool_sim_ball_count(f->sim);
+	pool_ball_state *want = calloc((size_t)balls, sizeof *want);
+	double end = pool_sim_time(f->sim);
+	double times[] = {0.0, 0.25 * end, 0.5 * end, end};
+	for (size_t k = 0; k < sizeof times / sizeof times[0]; ++k) {
+		pool_lcm_table_state_t m;
+		assert_int_equal(pool_lcm_table_state_fill(f->sim, times[k], 3, 4, &m), 0);
+		assert_int_equal(pool_sim_state_at(f->sim, times[k], want), POOL_OK);
+		assert_int_equal(m.num_balls, balls);
+		assert_true(m.t == times[k]);
+		for (int i = 0; i < balls; ++i) {
+			assert_ball_equal(&m.balls[i], &want[i]);
+		}
+		pool_lcm_table_state_release(&m);
+	}
+	free(want);
+}
+
+static void check_error_shot(void **state)
+{
+	(void)state;
+	char message[] = "balls[1].pos: overlaps ball 0 by 0.01 m";
+	pool_lcm_shot_t m;
+	assert_int_equal(pool_lcm_shot_fill_error(1, 2, 3, message, &m), 0);
+	message[0] = 'X'; // the message is copied
+	assert_string_equal(m.error, "balls[1].pos: overlaps ball 0 by 0.01 m");
+	assert_int_equal(m.num_events, 0);
+	assert_int_equal(m.num_balls, 0);
+	assert_int_equal(m.request_id, 2);
+	int size = pool_lcm_shot_t_encoded_size(&m);
+	assert_true(size > 0);
+	pool_lcm_shot_release(&m);
+	assert_int_equal(pool_lcm_shot_fill_error(1, 2, 3, "", &m), 0);
+	assert_true(m.error[0] != '\0'); // never an empty error on an error shot
+	pool_lcm_shot_release(&m);
+}
+
+static void check_request_decode(void **state)
+{
+	(void)state;
+	pool_lcm_shot_request_t req = {.utime = 11, .request_id = 42, .scenario_json = "{\"a\": 1}"};
+	int size = pool_lcm_shot_request_t_encoded_size(&req);
+	unsigned char *buffer = malloc((size_t)size);
+	assert_int_equal(pool_lcm_shot_request_t_encode(buffer, 0, size, &req), size);
+	pool_lcm_shot_request_t out;
+	char err[256];
+	assert_int_equal(pool_lcm_request_decode(buffer, (size_t)size, &out, err, sizeof err), 0);
+	assert_int_equal(out.request_id, 42);
+	assert_int_equal(out.utime, 11);
+	assert_string_equal(out.scenario_json, "{\"a\": 1}");
+	pool_lcm_shot_request_t_decode_cleanup(&out);
+
+	// Truncated, empty, garbage, a lying length, an unterminated string, a wrong fingerprint.
+	assert_int_equal(pool_lcm_request_decode(buffer, (size_t)size - 1, &out, err, sizeof err), -1);
+	assert_non_null(strstr(err, "undecodable"));
+	assert_int_equal(pool_lcm_request_decode(buffer, 0, &out, err, sizeof err), -1);
+	assert_int_equal(pool_lcm_request_decode("garbage", 7, &out, err, sizeof err), -1);
+	unsigned char *bad = malloc((size_t)size);
+	memcpy(bad, buffer, (size_t)size);
+	bad[24] = 0x7f;
+	assert_int_equal(pool_lcm_request_decode(bad, (size_t)size, &out, err, sizeof err), -1);
+	memcpy(bad, buffer, (size_t)size);
+	bad[size - 1] = 'x';
+	assert_int_equal(pool_lcm_request_decode(bad, (size_t)size, &out, err, sizeof err), -1);
+	memcpy(bad, buffer, (size_t)size);
+	bad[0] ^= 0xff;
+	assert_int_equal(pool_lcm_request_decode(bad, (size_t)size, &out, err, sizeof err), -1);
+	assert_non_null(strstr(err, "fingerprint"));
+	free(bad);
+	free(buffer);
+}
+
+static void check_resolve_url(void **state)
+{
+	(void)state;
+	setenv("LCM_DEFAULT_URL", "memq://", 1);
+	assert_string_equal(pool_lcm_resolve_url("udpm://239.1.2.3:7000?ttl=0"),
+	                    "udpm://239.1.2.3:7000?ttl=0");
+	assert_string_equal(pool_lcm_resolve_url(NULL), "memq://");
+	unsetenv("LCM_DEFAULT_URL");
+	assert_string_equal(pool_lcm_resolve_url(NULL), POOL_LCM_DEFAULT_URL);
+	assert_string_equal(pool_lcm_resolve_url(""), POOL_LCM_DEFAULT_URL);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test_setup_teardown(check_shot_round_trip, setup_cut, teardown),
+		cmocka_unit_test_setup_teardown(check_shot_round_trip, setup_break, teardown),
+		cmocka_unit_test_setup_teardown(check_event_fill, setup_break, teardown),
+		cmocka_unit_test_setup_teardown(check_table_state, setup_cut, teardown),
+		cmocka_unit_test(check_error_shot),
+		cmocka_unit_test(check_request_decode),
+		cmocka_unit_test(check_resolve_url),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

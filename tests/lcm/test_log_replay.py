@@ -1,0 +1,53 @@
+"""A shot logged by lcm-logger replays with lcm-logplayer to the same messages, byte for byte,
+on the same channels and in the same order; the log file itself holds them too."""
+import os
+import signal
+import subprocess
+import time
+
+import lcm_test_util as u
+
+args = u.parse_args()
+import lcm  # noqa: E402
+from pool_lcm import shot_t  # noqa: E402
+
+log = os.path.join(args.work_dir, "shot.lcmlog")
+if os.path.exists(log):
+    os.remove(log)
+scenario = os.path.join(args.data_dir, "cut.json")
+want = u.pool_sim_json(args.bin_dir, scenario, args.work_dir)
+
+# Record: the logger and a live capture both listen while pool-sim publishes.
+logger = subprocess.Popen(["lcm-logger", "-q", "-f", "--lcm-url=" + u.URL, log])
+live = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT"])
+time.sleep(0.5)  # lcm-logger prints nothing when it is ready
+subprocess.run([os.path.join(args.bin_dir, "pool-sim"), scenario, "--lcm-url", u.URL, "-o",
+                os.path.join(args.work_dir, "logged.json")], check=True, timeout=60)
+original = live.collect_until(lambda m: any(ch == "POOL_SHOT" for ch, _ in m), 10)
+live.close()
+time.sleep(0.5)
+logger.send_signal(signal.SIGINT)
+logger.wait(timeout=5)
+u.check(len(original) == len(want["events"]) + 1,
+        "live capture: %d messages, expected %d events + 1 shot" % (len(original),
+                                                                   len(want["events"])))
+
+# The log file holds exactly those messages.
+logged = [(e.channel, e.data) for e in lcm.EventLog(log, "r")]
+u.check(logged == original, "log file: %d messages, differ from the live capture" % len(logged))
+
+# Replay at 10x and capture again.
+replayed_capture = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT"])
+player = subprocess.run(["lcm-logplayer", "-s", "10", "--lcm-url=" + u.URL, log], timeout=60,
+                        capture_output=True, text=True)
+u.check(player.returncode == 0, "lcm-logplayer exit %d: %s" % (player.returncode, player.stderr))
+replayed = replayed_capture.collect_until(lambda m: len(m) >= len(original), 10)
+replayed_capture.close()
+u.check(replayed == original, "replay: %d messages, differ from the original %d" % (
+    len(replayed), len(original)))
+if replayed:
+    shot = shot_t.decode(replayed[-1][1])
+    u.check([u.event_json(e) for e in shot.events] == want["events"],
+            "replayed shot differs from pool-sim's result")
+print("logged and replayed %d messages" % len(replayed))
+u.finish()
