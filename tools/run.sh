@@ -10,3 +10,9 @@ cmake --build build/release -j"$JOBS" >/dev/null
 mkdir -p out
 echo "== Quartic solver: libpool against GSL =="
 build/release/tools/pool-bench-quartic
+
+echo "== Break shot: pool-rack 8ball | pool-sim | pool-plot =="
+build/release/tools/pool-rack 8ball -o out/break_scenario.json
+build/release/tools/pool-sim out/break_scenario.json --sample 0.01 --summary -o out/break.json
+.venv/bin/python tools/pool-plot out/break.json -o out/break.png --title "8-ball break"
+echo "scenario out/break_scenario.json, result out/break.json, picture out/break.png"
