@@ -1,0 +1,376 @@
+// pool-compare: measures engine plugins against the closed forms and libpool on shared scenarios
+// (docs/INTERFACES.md, docs/ENGINES.md).
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lcm_publish.h"
+#include "plugin_loader.h"
+#include "reference.h"
+#include "results_io.h"
+#include "runner.h"
+#include "scenario_file.h"
+
+using namespace pool_compare;
+
+namespace {
+
+const char kUsage[] =
+    "usage: pool-compare [--scenario FILE ...] [--engines libpool,ode,bullet] [--dt 1e-3,1e-4]\n"
+    "                    [--out DIR] [--lcm-url URL] [--plugin-dir DIR] [--spread N]\n"
+    "                    [--python PATH] [--no-plots] [--quiet] [--help]\n"
+    "\n"
+    "Runs each scenario on each engine plugin at each time step and measures it against the\n"
+    "closed form (one ball on the cloth) or libpool's exact result. Writes DIR/results.json,\n"
+    "DIR/results.csv, plots (DIR/*.png) and DIR/report.md, and prints the table.\n"
+    "\n"
+    "  --scenario FILE  libpool-scenario/1 file; repeat it or list several files after it\n"
+    "                   (default: every compare/scenarios/*.json)\n"
+    "  --engines LIST   plugin names or paths to .so modules, comma-separated; a name loads\n"
+    "                   <plugin dir>/libpool_engine_<name>.so (default: libpool,ode,bullet,\n"
+    "                   those that are built)\n"
+    "  --dt LIST        time steps of time-stepped engines, s (default 1e-2,1e-3,1e-4,1e-5;\n"
+    "                   scenarios of 3 or more balls skip steps below 1e-4 unless --dt is given)\n"
+    "  --out DIR        output directory (default out/compare)\n"
+    "  --lcm-url URL    also publish each result as pool_lcm.bench_result_t on POOL_BENCH\n"
+    "  --plugin-dir DIR where plugin names are looked up (default: next to pool-compare)\n"
+    "  --spread N       perturbed runs (1 um moves of the lead ball) measuring the spread of\n"
+    "                   outcomes in scenarios of 3 or more balls (default 8, 0 = off)\n"
+    "  --python PATH    Python with matplotlib for the plots (default: the repo's .venv)\n"
+    "  --no-plots       skip the plots\n"
+    "  --quiet          no progress lines\n"
+    "\n"
+    "Exit status: 0 done, 2 bad option, scenario or plugin (message on standard error),\n"
+    "1 a run or an output file failed.\n";
+
+struct Options {
+	std::vector<std::string> scenarios;
+	std::vector<std::string> engines;
+	bool engines_given = false;
+	std::vector<double> dts = {1e-2, 1e-3, 1e-4, 1e-5};
+	bool dts_given = false;
+	std::string out = "out/compare";
+	std::string lcm_url;
+	std::string plugin_dir;
+	int spread = 8;
+	std::string python;
+	bool plots = true;
+	bool quiet = false;
+};
+
+int usage_error(const std::string &message) {
+	std::cerr << "pool-compare: " << message << "\n(see pool-compare --help)\n";
+	return 2;
+}
+
+std::vector<std::string> split(const std::string &list) {
+	std::vector<std::string> out;
+	std::stringstream in(list);
+	std::string item;
+	while (std::getline(in, item, ','))
+		if (!item.empty())
+			out.push_back(item);
+	return out;
+}
+
+bool parse_double(const std::string &text, double *out) {
+	if (text.empty())
+		return false;
+	char *end = nullptr;
+	errno = 0;
+	const double x = std::strtod(text.c_str(), &end);
+	if (errno || *end != '\0' || !std::isfinite(x))
+		return false;
+	*out = x;
+	return true;
+}
+
+std::string executable_dir() {
+	char buf[4096];
+	const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+	if (n <= 0)
+		return ".";
+	std::string path(buf, static_cast<size_t>(n));
+	return path.substr(0, path.find_last_of('/'));
+}
+
+bool is_dir(const std::string &path) {
+	struct stat st;
+	return stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+bool make_dirs(const std::string &path) {
+	std::string sofar;
+	std::stringstream in(path);
+	std::string part;
+	if (!path.empty() && path[0] == '/')
+		sofar = "/";
+	while (std::getline(in, part, '/')) {
+		if (part.empty())
+			continue;
+		sofar += part + "/";
+		if (mkdir(sofar.c_str(), 0777) != 0 && errno != EEXIST)
+			return false;
+	}
+	return is_dir(path);
+}
+
+std::vector<std::string> default_scenarios(const std::string &dir) {
+	std::vector<std::string> files;
+	if (DIR *d = opendir(dir.c_str())) {
+		while (const dirent *e = readdir(d)) {
+			const std::string name = e->d_name;
+			if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0)
+				files.push_back(dir + "/" + name);
+		}
+		closedir(d);
+	}
+	std::sort(files.begin(), files.end());
+	return files;
+}
+
+// Parses argv; returns -1 to go on, else the exit status.
+int parse_args(int argc, char **argv, Options *o) {
+	bool in_scenarios = false;
+	for (int i = 1; i < argc; ++i) {
+		const std::string arg = argv[i];
+		auto value = [&](std::string *out) {
+			if (i + 1 >= argc)
+				return false;
+			*out = argv[++i];
+			return true;
+		};
+		std::string v;
+		if (arg == "--help" || arg == "-h") {
+			std::cout << kUsage;
+			return 0;
+		} else if (arg == "--scenario") {
+			if (!value(&v))
+				return usage_error("--scenario needs a file");
+			o->scenarios.push_back(v);
+			in_scenarios = true;
+			continue;
+		} else if (arg == "--engines") {
+			if (!value(&v) || split(v).empty())
+				return usage_error("--engines needs a comma-separated list of plugin names or paths");
+			o->engines = split(v);
+			o->engines_given = true;
+		} else if (arg == "--dt") {
+			if (!value(&v) || split(v).empty())
+				return usage_error("--dt needs a comma-separated list of time steps in seconds");
+			o->dts.clear();
+			for (const std::string &item : split(v)) {
+				double dt;
+				if (!parse_double(item, &dt) || !(dt > 0.0) || dt > 1.0)
+					return usage_error("--dt: '" + item + "' is not a time step in (0, 1] s");
+				o->dts.push_back(dt);
+			}
+			o->dts_given = true;
+		} else if (arg == "--out") {
+			if (!value(&v) || v.empty())
+				return usage_error("--out needs a directory");
+			o->out = v;
+		} else if (arg == "--lcm-url") {
+			if (!value(&v) || v.empty())
+				return usage_error("--lcm-url needs a URL");
+			o->lcm_url = v;
+		} else if (arg == "--plugin-dir") {
+			if (!value(&v) || v.empty())
+				return usage_error("--plugin-dir needs a directory");
+			if (!is_dir(v))
+				return usage_error("--plugin-dir: '" + v + "' is not a directory");
+			o->plugin_dir = v;
+		} else if (arg == "--spread") {
+			double n;
+			if (!value(&v) || !parse_double(v, &n) || n < 0 || n > 1000 || n != static_cast<int>(n))
+				return usage_error("--spread needs a whole number of runs in [0, 1000]");
+			o->spread = static_cast<int>(n);
+		} else if (arg == "--python") {
+			if (!value(&v) || v.empty())
+				return usage_error("--python needs a path");
+			o->python = v;
+		} else if (arg == "--no-plots") {
+			o->plots = false;
+		} else if (arg == "--quiet") {
+			o->quiet = true;
+		} else if (!arg.empty() && arg[0] != '-' && in_scenarios) {
+			o->scenarios.push_back(arg);
+			continue;
+		} else if (!arg.empty() && arg[0] == '-') {
+			return usage_error("unknown option '" + arg + "'");
+		} else {
+			return usage_error("unexpected argument '" + arg + "' (scenario files follow --scenario)");
+		}
+		in_scenarios = false;
+	}
+	return -1;
+}
+
+std::string fmt_dt(double dt) {
+	char buf[32];
+	std::snprintf(buf, sizeof buf, "%.0e", dt);
+	return buf;
+}
+
+// Runs the plot script; returns the PNG file names it reports (relative to the output dir).
+std::vector<std::string> draw_plots(const Options &o) {
+	std::string python = o.python;
+	if (python.empty())
+		python = access(POOL_COMPARE_DEFAULT_PYTHON, X_OK) == 0 ? POOL_COMPARE_DEFAULT_PYTHON : "python3";
+	const std::string command = "'" + python + "' '" POOL_COMPARE_PLOT_SCRIPT "' '" + o.out + "/results.json' '" +
+	                            o.out + "'";
+	std::vector<std::string> plots;
+	FILE *pipe = popen(command.c_str(), "r");
+	if (!pipe) {
+		std::cerr << "pool-compare: warning: cannot run " << command << "\n";
+		return plots;
+	}
+	char line[1024];
+	while (std::fgets(line, sizeof line, pipe)) {
+		std::string name = line;
+		while (!name.empty() && (name.back() == '\n' || name.back() == '\r'))
+			name.pop_back();
+		if (name.size() > 4 && name.compare(name.size() - 4, 4, ".png") == 0)
+			plots.push_back(name);
+	}
+	if (pclose(pipe) != 0)
+		std::cerr << "pool-compare: warning: the plot script failed (" << command << "); report without plots\n";
+	return plots;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+	Options o;
+	const int parsed = parse_args(argc, argv, &o);
+	if (parsed >= 0)
+		return parsed;
+
+	if (o.plugin_dir.empty()) {
+		const std::string beside = executable_dir() + "/plugins";
+		o.plugin_dir = is_dir(beside) ? beside : POOL_COMPARE_DEFAULT_PLUGIN_DIR;
+	}
+	if (!o.engines_given) {
+		const std::vector<std::string> present = available_plugins(o.plugin_dir);
+		for (const char *name : {"libpool", "ode", "bullet"}) {
+			if (std::find(present.begin(), present.end(), name) != present.end())
+				o.engines.push_back(name);
+			else
+				std::cerr << "pool-compare: warning: engine '" << name << "' is not built (no "
+				          << plugin_module_path(name, o.plugin_dir) << "); skipped\n";
+		}
+		if (o.engines.empty())
+			return usage_error("no engine plugin found in " + o.plugin_dir + " (pass --plugin-dir or --engines)");
+	}
+
+	std::vector<Plugin> plugins;
+	for (const std::string &request : o.engines) {
+		Plugin p;
+		std::string error;
+		if (!load_plugin(request, o.plugin_dir, &p, &error)) {
+			std::cerr << "pool-compare: " << error << "\n";
+			return 2;
+		}
+		plugins.push_back(p);
+	}
+
+	if (o.scenarios.empty()) {
+		o.scenarios = default_scenarios(POOL_COMPARE_DEFAULT_SCENARIO_DIR);
+		if (o.scenarios.empty())
+			return usage_error("no scenario files in " POOL_COMPARE_DEFAULT_SCENARIO_DIR);
+	}
+	std::vector<std::unique_ptr<Scenario>> scenarios;
+	for (const std::string &file : o.scenarios) {
+		std::unique_ptr<Scenario> s;
+		std::string error;
+		if (!load_scenario(file, &s, &error)) {
+			std::cerr << "pool-compare: " << error << "\n";
+			return 2;
+		}
+		scenarios.push_back(std::move(s));
+	}
+
+	std::unique_ptr<BenchPublisher> publisher;
+	if (!o.lcm_url.empty()) {
+		std::string error;
+		publisher = BenchPublisher::open(o.lcm_url, &error);
+		if (!publisher) {
+			std::cerr << "pool-compare: " << error << "\n";
+			return 2;
+		}
+	}
+	if (!make_dirs(o.out)) {
+		std::cerr << "pool-compare: --out: cannot create directory '" << o.out << "'\n";
+		return 2;
+	}
+
+	std::string command_line = "pool-compare";
+	for (int i = 1; i < argc; ++i)
+		command_line += std::string(" ") + argv[i];
+
+	int status = 0;
+	std::vector<Record> records;
+	for (const auto &scenario : scenarios) {
+		std::string error;
+		std::unique_ptr<Reference> ref = make_closed_form_reference(*scenario);
+		if (!ref)
+			ref = make_libpool_reference(*scenario, &error);
+		if (!ref) {
+			std::cerr << "pool-compare: " << error << "\n";
+			status = 1;
+			continue;
+		}
+		const bool many_balls = scenario->parsed.ball_count >= 3;
+		for (const Plugin &plugin : plugins) {
+			std::vector<double> dts = o.dts;
+			if (plugin.api->event_driven)
+				dts.resize(1);
+			for (double dt : dts) {
+				if (!plugin.api->event_driven && many_balls && !o.dts_given && dt < 1e-4)
+					continue; // the default sweep keeps the long multi-ball runs to a few minutes
+				RunSettings settings;
+				settings.dt = dt;
+				settings.spread_runs = many_balls ? o.spread : 0;
+				const double t0 = cpu_now();
+				Record rec = run_engine(*scenario, *ref, plugin, settings);
+				if (!o.quiet)
+					std::cerr << "  " << scenario->name << " / " << rec.engine << " / "
+					          << (plugin.api->event_driven ? std::string("event") : "dt " + fmt_dt(dt)) << ": "
+					          << (rec.error.empty() ? "done" : rec.error) << " (" << cpu_now() - t0 << " s CPU)\n";
+				if (publisher && !publisher->publish(rec, &error)) {
+					std::cerr << "pool-compare: " << error << "\n";
+					status = 1;
+				}
+				records.push_back(std::move(rec));
+			}
+		}
+	}
+
+	std::string error;
+	if (!write_results_json(o.out + "/results.json", records, &error) ||
+	    !write_results_csv(o.out + "/results.csv", records, &error)) {
+		std::cerr << "pool-compare: " << error << "\n";
+		return 1;
+	}
+	std::cout << results_table(records, false);
+	const std::vector<std::string> plots = o.plots ? draw_plots(o) : std::vector<std::string>();
+	if (!write_report(o.out, records, command_line, plots, &error)) {
+		std::cerr << "pool-compare: " << error << "\n";
+		return 1;
+	}
+	if (!o.quiet)
+		std::cerr << "pool-compare: wrote " << o.out << "/results.json, results.csv, report.md and " << plots.size()
+		          << " plots\n";
+	return status;
+}

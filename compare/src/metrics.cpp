@@ -1,0 +1,192 @@
+#include "metrics.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <tuple>
+
+namespace pool_compare {
+
+namespace {
+
+const BallSample *find_ball(const std::vector<BallSample> &balls, int id) {
+	for (const BallSample &b : balls)
+		if (b.id == id)
+			return &b;
+	return nullptr;
+}
+
+double planar_distance(const Eigen::Vector3d &a, const Eigen::Vector3d &b) {
+	return (a - b).head<2>().norm();
+}
+
+bool off_play(int state) { return state == 6 || state == 7; }
+
+bool is_collision(int type) {
+	return type == POOL_ENGINE_EVENT_BALL_BALL || type == POOL_ENGINE_EVENT_BALL_CUSHION;
+}
+
+// What a collision is about, independent of its time: the ball pair, or the ball and "a cushion".
+using CollisionKey = std::tuple<int, int, int>;
+CollisionKey key_of(const Event &e) {
+	if (e.type == POOL_ENGINE_EVENT_BALL_BALL)
+		return {e.type, std::min(e.ball_a, e.ball_b), std::max(e.ball_a, e.ball_b)};
+	return {e.type, e.ball_a, -1};
+}
+
+double max_or_none(double a, double b) {
+	if (std::isnan(a))
+		return b;
+	if (std::isnan(b))
+		return a;
+	return std::max(a, b);
+}
+
+// Smallest |t - e.t| over engine events accepted by `same`; NaN if none.
+template <typename Pred>
+double nearest(const std::vector<Event> &engine, double t, Pred same) {
+	double best = kNone;
+	for (const Event &e : engine)
+		if (same(e))
+			best = std::isnan(best) ? std::fabs(e.t - t) : std::min(best, std::fabs(e.t - t));
+	return best;
+}
+
+} // namespace
+
+StateErrors::StateErrors(const pool_params &params, const std::vector<double> &collision_times, double dt)
+    : params_(params), collision_times_(collision_times),
+      guard_(std::max(3.0 * (std::isnan(dt) ? 0.0 : dt), 1e-3)) {}
+
+void StateErrors::add(double t, const std::vector<BallSample> &engine, const std::vector<BallSample> &reference) {
+	for (const BallSample &r : reference) {
+		const BallSample *e = find_ball(engine, r.id);
+		if (!e) {
+			++missing_balls;
+			position_error = std::numeric_limits<double>::infinity();
+			continue;
+		}
+		position_error = std::max(position_error, planar_distance(e->pos, r.pos));
+	}
+	energy_error = std::max(energy_error, std::fabs(kinetic_energy(engine, params_) - kinetic_energy(reference, params_)));
+
+	// Directions mean little within a few steps of a collision, when the engine may not have
+	// resolved it yet; the instants 30 ms after each collision measure the outgoing direction.
+	bool near_collision = false;
+	for (double tc : collision_times_)
+		near_collision = near_collision || std::fabs(t - tc) < guard_;
+	if (!near_collision) {
+		for (const BallSample &r : reference) {
+			const BallSample *e = find_ball(engine, r.id);
+			if (!e || off_play(r.state) || off_play(e->state))
+				continue;
+			const Eigen::Vector2d a = r.vel.head<2>(), b = e->vel.head<2>();
+			if (a.norm() < 0.05 || b.norm() < 0.05)
+				continue;
+			const double cross = a.x() * b.y() - a.y() * b.x();
+			const double angle = std::atan2(std::fabs(cross), a.dot(b)) * 180.0 / M_PI;
+			direction_error = max_or_none(direction_error, angle);
+		}
+	}
+
+	const double diameter = 2.0 * params_.ball_radius;
+	for (size_t i = 0; i < engine.size(); ++i)
+		for (size_t j = i + 1; j < engine.size(); ++j) {
+			if (off_play(engine[i].state) || off_play(engine[j].state))
+				continue;
+			penetration = std::max(penetration, diameter - (engine[i].pos - engine[j].pos).norm());
+		}
+}
+
+double max_position_error(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference) {
+	double worst = 0.0;
+	for (const BallSample &r : reference) {
+		const BallSample *e = find_ball(engine, r.id);
+		worst = std::max(worst, e ? planar_distance(e->pos, r.pos) : std::numeric_limits<double>::infinity());
+	}
+	return worst;
+}
+
+int pocket_mismatches(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference) {
+	int count = 0;
+	for (const BallSample &r : reference) {
+		const BallSample *e = find_ball(engine, r.id);
+		if (e && off_play(e->state) != off_play(r.state))
+			++count;
+	}
+	return count;
+}
+
+void compare_events(const std::vector<Event> &engine_all, const std::vector<Event> &reference, double end_time,
+                    Record *rec) {
+	// Engines stepping past end_time may report events the reference never reached.
+	std::vector<Event> engine;
+	for (const Event &e : engine_all)
+		if (e.t <= end_time + 1e-9)
+			engine.push_back(e);
+
+	std::set<CollisionKey> ref_keys, eng_keys;
+	rec->collisions_reference = rec->collisions_engine = 0;
+	for (const Event &e : reference)
+		if (is_collision(e.type)) {
+			ref_keys.insert(key_of(e));
+			++rec->collisions_reference;
+		}
+	for (const Event &e : engine)
+		if (is_collision(e.type)) {
+			eng_keys.insert(key_of(e));
+			++rec->collisions_engine;
+		}
+	rec->missed_collisions = rec->phantom_collisions = 0;
+	for (const CollisionKey &k : ref_keys)
+		rec->missed_collisions += eng_keys.count(k) == 0;
+	for (const CollisionKey &k : eng_keys)
+		rec->phantom_collisions += ref_keys.count(k) == 0;
+
+	rec->unmatched_events = 0;
+	rec->first_contact_time_error = rec->slide_roll_time_error = rec->stop_time_error = kNone;
+	rec->collision_time_error = kNone;
+
+	auto first_collision = [](const std::vector<Event> &list) -> const Event * {
+		for (const Event &e : list)
+			if (is_collision(e.type))
+				return &e;
+		return nullptr;
+	};
+	const Event *ref_first = first_collision(reference), *eng_first = first_collision(engine);
+	if (ref_first && eng_first)
+		rec->first_contact_time_error = std::fabs(eng_first->t - ref_first->t);
+
+	std::map<int, double> ref_last_stop, eng_last_stop;
+	for (const Event &r : reference) {
+		if (r.type == POOL_ENGINE_EVENT_SLIDE_ROLL) {
+			const double d = nearest(engine, r.t, [&](const Event &e) {
+				return e.type == POOL_ENGINE_EVENT_SLIDE_ROLL && e.ball_a == r.ball_a;
+			});
+			if (std::isnan(d))
+				++rec->unmatched_events;
+			rec->slide_roll_time_error = max_or_none(rec->slide_roll_time_error, d);
+		} else if (r.type == POOL_ENGINE_EVENT_ROLL_STOP) {
+			ref_last_stop[r.ball_a] = r.t;
+		} else if (is_collision(r.type)) {
+			const CollisionKey k = key_of(r);
+			const double d = nearest(engine, r.t, [&](const Event &e) { return is_collision(e.type) && key_of(e) == k; });
+			rec->collision_time_error = max_or_none(rec->collision_time_error, d);
+		}
+	}
+	for (const Event &e : engine)
+		if (e.type == POOL_ENGINE_EVENT_ROLL_STOP)
+			eng_last_stop[e.ball_a] = e.t;
+	for (const auto &[ball, t] : ref_last_stop) {
+		auto it = eng_last_stop.find(ball);
+		if (it == eng_last_stop.end()) {
+			++rec->unmatched_events;
+			continue;
+		}
+		rec->stop_time_error = max_or_none(rec->stop_time_error, std::fabs(it->second - t));
+	}
+	rec->event_time_error =
+	    max_or_none(max_or_none(rec->first_contact_time_error, rec->slide_roll_time_error), rec->stop_time_error);
+}
+
+} // namespace pool_compare

@@ -1,0 +1,92 @@
+// Errors of an engine's run against a reference: positions, directions and energy at sample
+// instants, event times, missed and phantom collisions.
+#ifndef POOL_COMPARE_METRICS_H
+#define POOL_COMPARE_METRICS_H
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "reference.h"
+
+namespace pool_compare {
+
+/// "No value" of optional measurements (written as null).
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+
+/// One record of results.json: a scenario run by one engine at one time step.
+struct Record {
+	std::string scenario;      ///< file stem
+	std::string engine;        ///< plugin name
+	std::string description;   ///< the plugin's one-line description (what it can't model)
+	std::string reference;     ///< "closed-form" or "libpool"
+	std::string error;         ///< why the run failed ("" when it ran)
+	bool event_driven = false; ///< dt is then null
+	double dt = kNone;         ///< s
+
+	double cpu_seconds = kNone;       ///< median CPU time of a run (advance and run_to_rest), s
+	double cpu_seconds_min = kNone;   ///< fastest of the repetitions, s
+	int repetitions = 0;              ///< timed runs
+	double setup_cpu_seconds = kNone; ///< CPU time of create() (parsing, world building), s
+	double sim_seconds = kNone;       ///< simulated time reached, s
+	long long steps = 0;              ///< time steps (events for event-driven engines)
+
+	double final_position_error = kNone; ///< m, max over balls, at rest / at max_time
+	double event_position_error = kNone; ///< m, max over balls and sample instants
+	double direction_error_deg = kNone;  ///< deg, max angle between velocities (moving balls)
+	double energy_error = kNone;         ///< J, max |E - E_ref| over sample instants
+	double event_time_error = kNone;     ///< s, max of the three below
+	double first_contact_time_error = kNone; ///< s, first ball-ball or ball-cushion contact
+	double slide_roll_time_error = kNone;    ///< s, each reference slide->roll vs the engine's nearest
+	double stop_time_error = kNone;          ///< s, each ball's last roll_stop
+	double collision_time_error = kNone;     ///< s, each reference collision vs the nearest same one
+	int unmatched_events = 0;            ///< reference slide_roll / stop events the engine lacks
+	int missed_collisions = 0;           ///< reference ball pairs / cushion contacts not produced
+	int phantom_collisions = 0;          ///< pairs / cushion contacts the reference does not have
+	int collisions_reference = 0;        ///< collision events of the reference
+	int collisions_engine = 0;           ///< collision events the engine reported
+	int pocket_mismatches = 0;           ///< balls pocketed in one and not the other
+	double max_penetration = kNone;      ///< m, from the plugin's stats and the sampled states
+
+	int spread_runs = 0;             ///< perturbed runs (0: not measured)
+	double spread_perturbation = kNone; ///< m, displacement of the lead ball in each run
+	double spread_rms = kNone;       ///< m, RMS over runs and balls of the final-position change
+	double spread_max = kNone;       ///< m, largest final-position change
+
+	/// Simulated seconds per CPU second.
+	double speed() const { return sim_seconds / cpu_seconds; }
+};
+
+/// Accumulates the comparison of sampled engine states with the reference.
+class StateErrors {
+public:
+	StateErrors(const pool_params &params, const std::vector<double> &collision_times, double dt);
+	/// Compares one instant; engine balls are matched by id.
+	void add(double t, const std::vector<BallSample> &engine, const std::vector<BallSample> &reference);
+
+	double position_error = 0.0;  ///< m, max over instants and balls (xy)
+	double direction_error = kNone; ///< deg
+	double energy_error = 0.0;    ///< J
+	double penetration = 0.0;     ///< m, deepest ball-ball overlap seen
+	int missing_balls = 0;        ///< reference balls the engine did not report
+
+private:
+	pool_params params_;
+	std::vector<double> collision_times_;
+	double guard_;
+};
+
+/// Largest xy distance between the same balls of two states (infinity if a ball is missing).
+double max_position_error(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference);
+
+/// Fills the event fields of a record (times, missed and phantom collisions).
+void compare_events(const std::vector<Event> &engine, const std::vector<Event> &reference, double end_time,
+                    Record *record);
+
+/// Balls pocketed (or off the table) in one state but not in the other.
+int pocket_mismatches(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference);
+
+} // namespace pool_compare
+
+#endif

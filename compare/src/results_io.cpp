@@ -1,0 +1,256 @@
+#include "results_io.h"
+
+#include <jansson.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace pool_compare {
+
+namespace {
+
+json_t *number_or_null(double x) { return std::isfinite(x) ? json_real(x) : json_null(); }
+
+json_t *record_object(const Record &r) {
+	json_t *o = json_object();
+	json_object_set_new(o, "scenario", json_string(r.scenario.c_str()));
+	json_object_set_new(o, "engine", json_string(r.engine.c_str()));
+	json_object_set_new(o, "dt", r.event_driven ? json_null() : number_or_null(r.dt));
+	json_object_set_new(o, "cpu_seconds", number_or_null(r.cpu_seconds));
+	json_object_set_new(o, "sim_seconds", number_or_null(r.sim_seconds));
+	json_object_set_new(o, "final_position_error", number_or_null(r.final_position_error));
+	json_object_set_new(o, "event_time_error", number_or_null(r.event_time_error));
+	json_object_set_new(o, "energy_error", number_or_null(r.energy_error));
+	json_object_set_new(o, "missed_collisions", json_integer(r.missed_collisions));
+	json_object_set_new(o, "phantom_collisions", json_integer(r.phantom_collisions));
+	json_object_set_new(o, "max_penetration", number_or_null(r.max_penetration));
+	json_object_set_new(o, "reference", json_string(r.reference.c_str()));
+	// Beyond INTERFACES.md:
+	json_object_set_new(o, "speed", number_or_null(r.speed()));
+	json_object_set_new(o, "cpu_seconds_min", number_or_null(r.cpu_seconds_min));
+	json_object_set_new(o, "repetitions", json_integer(r.repetitions));
+	json_object_set_new(o, "setup_cpu_seconds", number_or_null(r.setup_cpu_seconds));
+	json_object_set_new(o, "steps", json_integer(r.steps));
+	json_object_set_new(o, "event_position_error", number_or_null(r.event_position_error));
+	json_object_set_new(o, "direction_error_deg", number_or_null(r.direction_error_deg));
+	json_object_set_new(o, "first_contact_time_error", number_or_null(r.first_contact_time_error));
+	json_object_set_new(o, "slide_roll_time_error", number_or_null(r.slide_roll_time_error));
+	json_object_set_new(o, "stop_time_error", number_or_null(r.stop_time_error));
+	json_object_set_new(o, "collision_time_error", number_or_null(r.collision_time_error));
+	json_object_set_new(o, "unmatched_events", json_integer(r.unmatched_events));
+	json_object_set_new(o, "collisions_reference", json_integer(r.collisions_reference));
+	json_object_set_new(o, "collisions_engine", json_integer(r.collisions_engine));
+	json_object_set_new(o, "pocket_mismatches", json_integer(r.pocket_mismatches));
+	json_object_set_new(o, "spread_runs", json_integer(r.spread_runs));
+	json_object_set_new(o, "spread_perturbation", number_or_null(r.spread_perturbation));
+	json_object_set_new(o, "spread_rms", number_or_null(r.spread_rms));
+	json_object_set_new(o, "spread_max", number_or_null(r.spread_max));
+	json_object_set_new(o, "event_driven", json_boolean(r.event_driven));
+	json_object_set_new(o, "notes", json_string(r.description.c_str()));
+	json_object_set_new(o, "error", r.error.empty() ? json_null() : json_string(r.error.c_str()));
+	return o;
+}
+
+const size_t kJsonFlags = JSON_REAL_PRECISION(17);
+
+bool write_file(const std::string &path, const std::string &text, std::string *error) {
+	// Written next to the target and renamed, so readers never see a half-written file.
+	const std::string tmp = path + ".tmp";
+	FILE *f = std::fopen(tmp.c_str(), "wb");
+	bool ok = f && std::fwrite(text.data(), 1, text.size(), f) == text.size();
+	if (f)
+		ok = std::fclose(f) == 0 && ok;
+	if (ok)
+		ok = std::rename(tmp.c_str(), path.c_str()) == 0;
+	if (!ok) {
+		std::remove(tmp.c_str());
+		*error = "cannot write " + path;
+	}
+	return ok;
+}
+
+std::string csv_cell(json_t *v) {
+	if (json_is_null(v))
+		return "";
+	if (json_is_string(v)) {
+		std::string s = json_string_value(v), out = "\"";
+		for (char c : s)
+			out += c == '"' ? std::string("\"\"") : std::string(1, c);
+		return out + "\"";
+	}
+	if (json_is_true(v))
+		return "true";
+	if (json_is_false(v))
+		return "false";
+	char *text = json_dumps(v, JSON_ENCODE_ANY | kJsonFlags);
+	std::string s = text ? text : "";
+	free(text);
+	return s;
+}
+
+std::string fmt(double x, const char *format = "%.3g") {
+	if (!std::isfinite(x))
+		return "-";
+	char buf[64];
+	std::snprintf(buf, sizeof buf, format, x);
+	return buf;
+}
+
+} // namespace
+
+std::string record_json(const Record &r) {
+	json_t *o = record_object(r);
+	char *text = json_dumps(o, JSON_COMPACT | kJsonFlags);
+	std::string s = text ? text : "{}";
+	free(text);
+	json_decref(o);
+	return s;
+}
+
+bool write_results_json(const std::string &path, const std::vector<Record> &records, std::string *error) {
+	json_t *list = json_array();
+	for (const Record &r : records)
+		json_array_append_new(list, record_object(r));
+	char *text = json_dumps(list, JSON_INDENT(2) | kJsonFlags);
+	json_decref(list);
+	if (!text) {
+		*error = "out of memory writing " + path;
+		return false;
+	}
+	std::string s = std::string(text) + "\n";
+	free(text);
+	return write_file(path, s, error);
+}
+
+bool write_results_csv(const std::string &path, const std::vector<Record> &records, std::string *error) {
+	std::ostringstream out;
+	Record blank;
+	json_t *header = record_object(blank);
+	const char *key;
+	json_t *value;
+	bool first = true;
+	json_object_foreach(header, key, value) {
+		out << (first ? "" : ",") << key;
+		first = false;
+	}
+	out << "\n";
+	for (const Record &r : records) {
+		json_t *o = record_object(r);
+		first = true;
+		json_object_foreach(header, key, value) {
+			out << (first ? "" : ",") << csv_cell(json_object_get(o, key));
+			first = false;
+		}
+		out << "\n";
+		json_decref(o);
+	}
+	json_decref(header);
+	return write_file(path, out.str(), error);
+}
+
+std::string results_table(const std::vector<Record> &records, bool markdown) {
+	const std::vector<std::string> head = {"scenario", "engine", "dt (s)", "sim s / CPU s", "final pos err (m)",
+	                                       "event t err (s)", "dir err (deg)", "energy err (J)", "missed",
+	                                       "phantom", "max pen (m)", "spread rms (m)", "reference"};
+	std::vector<std::vector<std::string>> rows;
+	for (const Record &r : records) {
+		if (!r.error.empty() && !std::isfinite(r.cpu_seconds)) {
+			rows.push_back({r.scenario, r.engine, r.event_driven ? "event" : fmt(r.dt, "%.0e"), "failed: " + r.error});
+			continue;
+		}
+		rows.push_back({r.scenario, r.engine, r.event_driven ? "event" : fmt(r.dt, "%.0e"), fmt(r.speed()),
+		                fmt(r.final_position_error, "%.2e"), fmt(r.event_time_error, "%.2e"),
+		                fmt(r.direction_error_deg, "%.2g"), fmt(r.energy_error, "%.2e"),
+		                std::to_string(r.missed_collisions), std::to_string(r.phantom_collisions),
+		                fmt(r.max_penetration, "%.2e"), r.spread_runs ? fmt(r.spread_rms, "%.2e") : "-",
+		                r.reference});
+	}
+	std::ostringstream out;
+	if (markdown) {
+		out << "|";
+		for (const std::string &h : head)
+			out << " " << h << " |";
+		out << "\n|";
+		for (size_t i = 0; i < head.size(); ++i)
+			out << (i < 2 || i + 1 == head.size() ? "---|" : "---:|");
+		out << "\n";
+		for (const auto &row : rows) {
+			out << "|";
+			for (size_t i = 0; i < head.size(); ++i)
+				out << " " << (i < row.size() ? row[i] : "") << " |";
+			out << "\n";
+		}
+		return out.str();
+	}
+	std::vector<size_t> width(head.size());
+	for (size_t i = 0; i < head.size(); ++i)
+		width[i] = head[i].size();
+	for (const auto &row : rows)
+		for (size_t i = 0; i < row.size() && i < head.size(); ++i)
+			if (row.size() == head.size() || i < 3)
+				width[i] = std::max(width[i], row[i].size());
+	auto line = [&](const std::vector<std::string> &row) {
+		for (size_t i = 0; i < row.size(); ++i) {
+			const bool left = i < 2 || i + 1 == head.size() || row.size() != head.size();
+			const std::string &cell = row[i];
+			const std::string pad(cell.size() < width[i] ? width[i] - cell.size() : 0, ' ');
+			out << (i ? "  " : "") << (left ? cell + (i + 1 < row.size() ? pad : "") : pad + cell);
+		}
+		out << "\n";
+	};
+	line(head);
+	for (const auto &row : rows)
+		line(row);
+	return out.str();
+}
+
+std::string machine_description() {
+	std::ifstream in("/proc/cpuinfo");
+	std::string line, model = "unknown CPU";
+	while (std::getline(in, line))
+		if (line.compare(0, 10, "model name") == 0) {
+			model = line.substr(line.find(':') + 2);
+			break;
+		}
+	return model + ", " + std::to_string(sysconf(_SC_NPROCESSORS_ONLN)) + " cores online";
+}
+
+bool write_report(const std::string &dir, const std::vector<Record> &records, const std::string &command_line,
+                  const std::vector<std::string> &plots, std::string *error) {
+	std::ostringstream out;
+	out << "# Engine comparison: libpool against time-stepped engines\n\n";
+	out << "Command: `" << command_line << "`  \nMachine: " << machine_description() << "\n\n";
+	out << "Errors are against the closed form of PHYSICS.md where one exists (`closed-form`), else against "
+	       "libpool's exact event-driven result (`libpool`, whose own errors are then 0 by definition). "
+	       "`sim s / CPU s` is simulated seconds per CPU second (median of the timed runs); `spread rms` "
+	       "is the RMS change of the final positions when the lead ball starts 1 um elsewhere "
+	       "(predictability). Every field is in `results.json` / `results.csv`.\n\n";
+	out << results_table(records, true) << "\n";
+	std::map<std::string, std::string> notes;
+	for (const Record &r : records)
+		notes[r.engine] = r.description;
+	out << "## Engines\n\n";
+	for (const auto &[engine, note] : notes)
+		out << "- **" << engine << "**: " << note << "\n";
+	bool failures = false;
+	for (const Record &r : records)
+		if (!r.error.empty()) {
+			if (!failures)
+				out << "\n## Runs that failed or are incomplete\n\n";
+			failures = true;
+			out << "- " << r.scenario << " / " << r.engine << " / dt " << fmt(r.dt, "%.0e") << ": " << r.error << "\n";
+		}
+	if (!plots.empty()) {
+		out << "\n## Plots\n\nLeft of each pair: speed (simulated s per CPU s) against final-position error, one "
+		       "curve per engine over the time-step sweep (after Erez, Tassa & Todorov 2015, with true error "
+		       "instead of consistency). Right: final-position error against the time step.\n\n";
+		for (const std::string &p : plots)
+			out << "![" << p << "](" << p << ")\n";
+	}
+	return write_file(dir + "/report.md", out.str(), error);
+}
+
+} // namespace pool_compare

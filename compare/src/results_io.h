@@ -1,0 +1,34 @@
+// Writing the comparison: results.json (INTERFACES.md fields first), results.csv, the printed
+// table and report.md.
+#ifndef POOL_COMPARE_RESULTS_IO_H
+#define POOL_COMPARE_RESULTS_IO_H
+
+#include <string>
+#include <vector>
+
+#include "metrics.h"
+
+namespace pool_compare {
+
+/// One record as a compact JSON object (the form results.json and LCM carry).
+std::string record_json(const Record &record);
+
+/// Writes DIR/results.json; false with *error on I/O failure.
+bool write_results_json(const std::string &path, const std::vector<Record> &records, std::string *error);
+
+/// Writes DIR/results.csv with the same columns.
+bool write_results_csv(const std::string &path, const std::vector<Record> &records, std::string *error);
+
+/// The readable table; markdown = true gives a markdown table.
+std::string results_table(const std::vector<Record> &records, bool markdown);
+
+/// One line describing the machine (CPU model, cores).
+std::string machine_description();
+
+/// Writes report.md: the table, what each engine cannot model, and the plots found in DIR.
+bool write_report(const std::string &dir, const std::vector<Record> &records, const std::string &command_line,
+                  const std::vector<std::string> &plots, std::string *error);
+
+} // namespace pool_compare
+
+#endif

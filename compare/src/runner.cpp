@@ -1,0 +1,245 @@
+#include "runner.h"
+
+#include <time.h>
+
+#include <algorithm>
+
+namespace pool_compare {
+
+namespace {
+
+// One engine instance; every call into the engine that simulates is timed.
+class EngineRun {
+public:
+	explicit EngineRun(const pool_engine_api *api) : api_(api) {}
+	~EngineRun() {
+		if (engine_)
+			api_->destroy(engine_);
+	}
+	EngineRun(const EngineRun &) = delete;
+	EngineRun &operator=(const EngineRun &) = delete;
+
+	bool create(const std::string &json, double dt, std::string *error) {
+		pool_engine_config config = {dt, 0};
+		char message[512] = {0};
+		const double t0 = cpu_now();
+		engine_ = api_->create(json.c_str(), &config, message, sizeof message);
+		setup_cpu = cpu_now() - t0;
+		if (!engine_)
+			*error = std::string("create failed: ") + (message[0] ? message : "no message");
+		return engine_ != nullptr;
+	}
+
+	bool advance(double t, std::string *error) {
+		const double t0 = cpu_now();
+		const int r = api_->advance(engine_, t);
+		cpu += cpu_now() - t0;
+		return check(r, "advance", error);
+	}
+
+	bool run_to_rest(double max_time, std::string *error) {
+		const double t0 = cpu_now();
+		const int r = api_->run_to_rest(engine_, max_time);
+		cpu += cpu_now() - t0;
+		return check(r, "run_to_rest", error);
+	}
+
+	// Runs the rest of the shot the way the reference ended: to rest, or to its max_time.
+	bool finish(const Reference &ref, double max_time, std::string *error) {
+		return ref.at_rest ? run_to_rest(max_time, error) : advance(ref.end_time, error);
+	}
+
+	std::vector<BallSample> balls() const {
+		std::vector<pool_engine_ball> raw(64);
+		int n = api_->balls(engine_, raw.data(), static_cast<int>(raw.size()));
+		if (n > static_cast<int>(raw.size())) {
+			raw.resize(static_cast<size_t>(n));
+			n = api_->balls(engine_, raw.data(), n);
+		}
+		std::vector<BallSample> out;
+		for (int i = 0; i < std::min(n, static_cast<int>(raw.size())); ++i) {
+			BallSample b;
+			b.id = raw[i].id;
+			b.state = raw[i].state;
+			b.pos = Eigen::Vector3d(raw[i].pos);
+			b.vel = Eigen::Vector3d(raw[i].vel);
+			b.omega = Eigen::Vector3d(raw[i].omega);
+			out.push_back(b);
+		}
+		return out;
+	}
+
+	std::vector<Event> events() const {
+		std::vector<pool_engine_event> raw(256);
+		int n = api_->events(engine_, raw.data(), static_cast<int>(raw.size()));
+		if (n > static_cast<int>(raw.size())) {
+			raw.resize(static_cast<size_t>(n));
+			n = api_->events(engine_, raw.data(), n);
+		}
+		n = std::max(0, std::min(n, static_cast<int>(raw.size())));
+		std::vector<Event> out;
+		for (int i = 0; i < n; ++i)
+			out.push_back({raw[i].t, raw[i].type, raw[i].ball_a, raw[i].ball_b});
+		std::stable_sort(out.begin(), out.end(), [](const Event &a, const Event &b) { return a.t < b.t; });
+		return out;
+	}
+
+	pool_engine_stats stats() const {
+		pool_engine_stats s = {0, 0.0, 0.0};
+		api_->stats(engine_, &s);
+		return s;
+	}
+
+	double cpu = 0.0;
+	double setup_cpu = 0.0;
+
+private:
+	bool check(int r, const char *what, std::string *error) {
+		if (r >= 0)
+			return true;
+		const char *message = api_->last_error(engine_);
+		*error = std::string(what) + " failed: " + (message && message[0] ? message : "no message");
+		return false;
+	}
+
+	const pool_engine_api *api_;
+	void *engine_ = nullptr;
+};
+
+bool is_collision(int type) {
+	return type == POOL_ENGINE_EVENT_BALL_BALL || type == POOL_ENGINE_EVENT_BALL_CUSHION;
+}
+
+double median(std::vector<double> v) {
+	std::sort(v.begin(), v.end());
+	const size_t n = v.size();
+	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+} // namespace
+
+double cpu_now() {
+	timespec ts;
+	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+	return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+std::vector<double> sample_times(const Reference &ref, int max_samples) {
+	std::vector<double> times;
+	for (const Event &e : ref.events) {
+		if (e.t > 0.0 && e.t < ref.end_time)
+			times.push_back(e.t);
+		if (is_collision(e.type) && e.t + 0.03 < ref.end_time)
+			times.push_back(e.t + 0.03);
+	}
+	std::sort(times.begin(), times.end());
+	times.erase(std::unique(times.begin(), times.end()), times.end());
+	if (max_samples > 1 && static_cast<int>(times.size()) > max_samples - 1) {
+		std::vector<double> kept;
+		const double stride = static_cast<double>(times.size()) / (max_samples - 1);
+		for (int i = 0; i < max_samples - 1; ++i)
+			kept.push_back(times[static_cast<size_t>(i * stride)]);
+		times.swap(kept);
+	}
+	times.insert(times.begin(), 0.0);
+	return times;
+}
+
+Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &plugin, const RunSettings &settings) {
+	const pool_engine_api *api = plugin.api;
+	const pool_params &params = scenario.parsed.def.params;
+	const double max_time = scenario.parsed.def.max_time;
+	Record rec;
+	rec.scenario = scenario.name;
+	rec.engine = api->name;
+	rec.description = api->description ? api->description : "";
+	rec.reference = ref.kind();
+	rec.event_driven = api->event_driven != 0;
+	rec.dt = rec.event_driven ? kNone : settings.dt;
+
+	std::vector<double> collision_times;
+	for (const Event &e : ref.events)
+		if (is_collision(e.type))
+			collision_times.push_back(e.t);
+
+	// The measured run: states compared at the sample instants, then the end of the shot.
+	std::vector<double> cpu_times;
+	std::vector<BallSample> final_balls;
+	{
+		EngineRun run(api);
+		if (!run.create(scenario.json, settings.dt, &rec.error))
+			return rec;
+		StateErrors errors(params, collision_times, rec.dt);
+		for (double t : sample_times(ref, settings.max_samples)) {
+			if (t > 0.0 && !run.advance(t, &rec.error))
+				return rec;
+			errors.add(t, run.balls(), ref.state_at(t));
+		}
+		if (!run.finish(ref, max_time, &rec.error))
+			return rec;
+		final_balls = run.balls();
+		const std::vector<BallSample> ref_final = ref.state_at(ref.end_time);
+		errors.add(ref.end_time, final_balls, ref_final);
+		const pool_engine_stats stats = run.stats();
+
+		rec.setup_cpu_seconds = run.setup_cpu;
+		cpu_times.push_back(run.cpu);
+		rec.sim_seconds = stats.sim_time;
+		rec.steps = stats.steps;
+		rec.final_position_error = max_position_error(final_balls, ref_final);
+		rec.event_position_error = errors.position_error;
+		rec.direction_error_deg = errors.direction_error;
+		rec.energy_error = errors.energy_error;
+		rec.max_penetration = std::max({0.0, stats.max_penetration, errors.penetration});
+		rec.pocket_mismatches = pocket_mismatches(final_balls, ref_final);
+		compare_events(run.events(), ref.events, ref.end_time, &rec);
+		if (errors.missing_balls)
+			rec.error = "the engine did not report every ball";
+	}
+
+	// Short runs are repeated so the CPU time is not just clock resolution.
+	const double timing_start = cpu_now();
+	while (cpu_times[0] + cpu_now() - timing_start < settings.min_timing_cpu &&
+	       static_cast<int>(cpu_times.size()) < settings.max_repetitions) {
+		EngineRun run(api);
+		if (!run.create(scenario.json, settings.dt, &rec.error) || !run.finish(ref, max_time, &rec.error))
+			return rec;
+		cpu_times.push_back(run.cpu);
+	}
+	rec.repetitions = static_cast<int>(cpu_times.size());
+	rec.cpu_seconds = median(cpu_times);
+	rec.cpu_seconds_min = *std::min_element(cpu_times.begin(), cpu_times.end());
+
+	// Predictability: how far the outcome moves when the lead ball starts 1 um elsewhere.
+	if (settings.spread_runs > 0) {
+		const int id = scenario.lead_ball_id();
+		const int n = settings.spread_runs;
+		Eigen::MatrixXd change(n, static_cast<Eigen::Index>(final_balls.size()));
+		for (int k = 0; k < n; ++k) {
+			const double angle = 2.0 * M_PI * k / n;
+			const std::string json = perturbed_json(scenario.json, id, settings.perturbation * std::cos(angle),
+			                                        settings.perturbation * std::sin(angle));
+			EngineRun run(api);
+			std::string error;
+			if (json.empty() || !run.create(json, settings.dt, &error) || !run.finish(ref, max_time, &error)) {
+				rec.error = "perturbed run " + std::to_string(k) + ": " + (json.empty() ? "bad scenario" : error);
+				return rec;
+			}
+			const std::vector<BallSample> balls = run.balls();
+			for (size_t b = 0; b < final_balls.size(); ++b) {
+				double d = std::numeric_limits<double>::infinity();
+				for (const BallSample &s : balls)
+					if (s.id == final_balls[b].id)
+						d = (s.pos - final_balls[b].pos).head<2>().norm();
+				change(k, static_cast<Eigen::Index>(b)) = d;
+			}
+		}
+		rec.spread_runs = n;
+		rec.spread_perturbation = settings.perturbation;
+		rec.spread_rms = std::sqrt(change.squaredNorm() / static_cast<double>(change.size()));
+		rec.spread_max = change.maxCoeff();
+	}
+	return rec;
+}
+
+} // namespace pool_compare

@@ -1,0 +1,33 @@
+// Runs one scenario on one engine at one time step and measures it against the reference.
+#ifndef POOL_COMPARE_RUNNER_H
+#define POOL_COMPARE_RUNNER_H
+
+#include "metrics.h"
+#include "plugin_loader.h"
+
+namespace pool_compare {
+
+/// How to run and time one engine.
+struct RunSettings {
+	double dt = 1e-3;              ///< s, for time-stepped engines
+	int spread_runs = 0;           ///< perturbed runs for the predictability study (0: none)
+	double perturbation = 1e-6;    ///< m, how far each perturbed run moves the lead ball
+	double min_timing_cpu = 0.2;   ///< s, repeat short runs (setup included) until this much CPU time passed
+	int max_repetitions = 2000;    ///< cap of those repetitions
+	int max_samples = 150;         ///< cap of the instants at which states are compared
+};
+
+/// The measured record. A failing engine gives a record whose error field says why.
+Record run_engine(const Scenario &scenario, const Reference &reference, const Plugin &plugin,
+                  const RunSettings &settings);
+
+/// Instants (s) at which the states are compared: 0, every reference event, and 30 ms after
+/// each collision; at most max_samples of them, all before end_time.
+std::vector<double> sample_times(const Reference &reference, int max_samples);
+
+/// Process CPU time, s.
+double cpu_now();
+
+} // namespace pool_compare
+
+#endif

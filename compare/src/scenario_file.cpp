@@ -1,0 +1,96 @@
+#include "scenario_file.h"
+
+#include <jansson.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace pool_compare {
+
+int Scenario::index_of(int id) const {
+	for (int i = 0; i < parsed.ball_count; ++i)
+		if (parsed.balls[i].id == id)
+			return i;
+	return -1;
+}
+
+int Scenario::lead_ball_id() const {
+	if (parsed.has_strike)
+		return parsed.strike_ball;
+	int best = parsed.ball_count > 0 ? parsed.balls[0].id : 0;
+	double best_speed = -1.0;
+	for (int i = 0; i < parsed.ball_count; ++i) {
+		const pool_vec3 &v = parsed.balls[i].vel;
+		double speed = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+		if (speed > best_speed) {
+			best_speed = speed;
+			best = parsed.balls[i].id;
+		}
+	}
+	return best;
+}
+
+bool parse_scenario(const std::string &name, const std::string &json, std::unique_ptr<Scenario> *out,
+                    std::string *error) {
+	auto scenario = std::make_unique<Scenario>();
+	char message[512] = {0};
+	if (pool_scenario_parse(json.data(), json.size(), &scenario->parsed, message, sizeof message) != 0) {
+		*error = name + ": " + message;
+		return false;
+	}
+	scenario->name = name;
+	scenario->json = json;
+	*out = std::move(scenario);
+	return true;
+}
+
+bool load_scenario(const std::string &path, std::unique_ptr<Scenario> *out, std::string *error) {
+	std::ifstream in(path, std::ios::binary);
+	if (!in) {
+		*error = path + ": cannot read the file";
+		return false;
+	}
+	std::ostringstream text;
+	text << in.rdbuf();
+	std::string stem = path.substr(path.find_last_of('/') + 1);
+	if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".json") == 0)
+		stem.resize(stem.size() - 5);
+	if (!parse_scenario(stem, text.str(), out, error)) {
+		*error = path + error->substr(stem.size());
+		return false;
+	}
+	(*out)->path = path;
+	return true;
+}
+
+std::string perturbed_json(const std::string &json, int id, double dx, double dy) {
+	json_error_t jerr;
+	json_t *root = json_loadb(json.data(), json.size(), 0, &jerr);
+	if (!root)
+		return "";
+	std::string result;
+	json_t *balls = json_object_get(root, "balls");
+	size_t i;
+	json_t *ball;
+	json_array_foreach(balls, i, ball) {
+		json_t *ball_id = json_object_get(ball, "id");
+		json_t *pos = json_object_get(ball, "pos");
+		if (!json_is_integer(ball_id) || json_integer_value(ball_id) != id || json_array_size(pos) < 2)
+			continue;
+		double x = json_number_value(json_array_get(pos, 0)) + dx;
+		double y = json_number_value(json_array_get(pos, 1)) + dy;
+		json_array_set_new(pos, 0, json_real(x));
+		json_array_set_new(pos, 1, json_real(y));
+		char *text = json_dumps(root, JSON_COMPACT | JSON_REAL_PRECISION(17));
+		if (text) {
+			result = text;
+			free(text);
+		}
+		break;
+	}
+	json_decref(root);
+	return result;
+}
+
+} // namespace pool_compare
