@@ -279,6 +279,27 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
         self.assertNotIn("strike", {e["type"] for e in out["events"]})
         self.assertEqual(out["events"][0]["balls"], [5])  # only the moving ball has events first
 
+    def test_max_time_cuts_the_shot(self):
+        # "final" is taken at max_time when the shot is cut there, with balls still moving.
+        doc = straight_shot(2.0)
+        doc["options"] = {"max_time": 0.3}
+        r = sim(write("max_time.json", doc), "--sample", "0.01")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        out = json.loads(r.stdout)
+        self.check_result(out, [0, 1])
+        self.assertEqual(out["stats"]["stop_reason"], "max_time")
+        self.assertEqual(out["stats"]["end_time"], 0.3)
+        self.assertLessEqual(out["stats"]["sim_time"], 0.3)
+        cue = [b for b in out["final"] if b["id"] == 0][0]
+        self.assertEqual(cue["state"], "sliding")
+        # Still sliding at 0.3 s (slide_roll comes at 2 v0 / (7 mu g) = 0.44 s): closed form.
+        v0, a = 2 * 2.0 / (1 + 0.17 / 0.54), 0.2 * 9.81
+        self.assertAlmostEqual(cue["pos"][0], 0.635 + v0 * 0.3 - a * 0.3**2 / 2, delta=1e-12)
+        self.assertAlmostEqual(cue["vel"][0], v0 - a * 0.3, delta=1e-12)
+        samples = [b for b in out["samples"]["balls"] if b["id"] == 0][0]
+        self.assertEqual(samples["t"][-1], 0.3)
+        self.assertIn(0.29, samples["t"])  # grid times are k / (1/dt), not k * dt
+
     def test_max_events_stops(self):
         doc = straight_shot(3.0)
         doc["options"] = {"max_events": 2}

@@ -70,13 +70,15 @@ static void write_events(pool_jw *w, const pool_sim *sim, const pool_event *even
 }
 
 static void write_stats(pool_jw *w, const pool_sim *sim, const pool_event *events, int count,
-                        const pool_ball_state *final_states, int ball_count) {
+                        const pool_ball_state *final_states, int ball_count, double end) {
 	pool_jw_key(w, "stats");
 	pool_jw_object(w, false);
 	pool_jw_key(w, "events");
 	pool_jw_int(w, count);
 	pool_jw_key(w, "sim_time");
 	pool_jw_number(w, pool_sim_time(sim));
+	pool_jw_key(w, "end_time"); // time of "final": sim_time, or max_time when cut there
+	pool_jw_number(w, end);
 	pool_jw_key(w, "stop_reason");
 	pool_jw_string(w, pool_stop_reason_name(pool_sim_stop_reason(sim)));
 	pool_jw_key(w, "balls");
@@ -134,8 +136,12 @@ static bool write_samples(pool_jw *w, const pool_sim *sim, const pool_event *eve
 	if (!times)
 		return false;
 	size_t n = 0;
+	// With a whole number of samples per second (dt = 0.01...), k / rate is the correctly
+	// rounded k dt (1.63, not 1.6300000000000001).
+	double rate = 1.0 / dt;
+	bool whole_rate = rate == floor(rate) && rate < 1e15;
 	for (size_t k = 0; k < grid; ++k) {
-		double t = (double)k * dt;
+		double t = whole_rate ? (double)k / rate : (double)k * dt;
 		if (t <= end)
 			times[n++] = t;
 	}
@@ -217,7 +223,12 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	int count = 0;
 	const pool_event *events = pool_sim_events(sim, &count);
 	int balls = pool_sim_ball_count(sim);
+	// "final" is every ball at rest, or at max_time when the shot was cut there (INTERFACES.md);
+	// the library has processed everything up to max_time in that case.
 	double end = pool_sim_time(sim);
+	if (pool_sim_stop_reason(sim) == POOL_STOP_MAX_TIME && options->def &&
+	    options->def->max_time > end)
+		end = options->def->max_time;
 	pool_ball_state *final_states = calloc(balls > 0 ? (size_t)balls : 1, sizeof *final_states);
 	if (!final_states)
 		return NULL;
@@ -253,7 +264,7 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	for (int i = 0; i < balls; ++i)
 		write_state(&w, &final_states[i]);
 	pool_jw_end(&w, ']');
-	write_stats(&w, sim, events, count, final_states, balls);
+	write_stats(&w, sim, events, count, final_states, balls, end);
 	bool ok = true;
 	if (options->sample_dt > 0.0 && isfinite(options->sample_dt) && balls > 0)
 		ok = write_samples(&w, sim, events, count, options->sample_dt, end);
