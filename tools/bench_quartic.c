@@ -19,8 +19,10 @@
 #define BQ_MAX_RUNS 100
 
 typedef struct bq_opts {
-	long count, runs, ref;
+	long count, runs, ref, show;
 } bq_opts;
+
+static long bq_show_left; // --show-failures: how many more pool failures to print
 
 static void bq_usage(FILE *out) {
 	fprintf(out,
@@ -31,7 +33,8 @@ static void bq_usage(FILE *out) {
 	        "  reference.\n"
 	        "  --count N  quartics per set (default 1000000)\n"
 	        "  --runs N   timed runs per solver and set (default 5, at most %d)\n"
-	        "  --ref N    cases per set checked against the reference (default 20000)\n",
+	        "  --ref N    cases per set checked against the reference (default 20000)\n"
+	        "  --show-failures N  print the first N well-conditioned cases pool gets wrong\n",
 	        BQ_MAX_RUNS);
 }
 
@@ -224,7 +227,18 @@ static bq_check bq_verify(bq_gsl *g, const double *coeffs, long n) {
 			++ck.well;
 		int np = pool_quartic_real_roots(c, rp);
 		int ng = bq_gsl_real_roots(g, c, rg);
+		long before = ck.pool.count + ck.pool.roots + ck.pool.smallest;
 		bq_tally(&ck.pool, &ref, np, rp);
+		if (bq_show_left > 0 && ck.pool.count + ck.pool.roots + ck.pool.smallest != before) {
+			--bq_show_left;
+			printf("pool failure: coeffs %.17g %.17g %.17g %.17g %.17g\n  pool:", c[0], c[1], c[2], c[3], c[4]);
+			for (int k = 0; k < np; ++k)
+				printf(" %.17g", rp[k]);
+			printf("\n  reference:");
+			for (int k = 0; k < ref.n_real; ++k)
+				printf(" %.17g (kappa %.3g, tol %.3g)", ref.real[k], ref.kappa[k], ref.tol[k]);
+			printf("\n");
+		}
 		bq_tally(&ck.gsl, &ref, ng, rg);
 		if (!ref.ill) {
 			double r, r_ref, tol;
@@ -238,7 +252,7 @@ static bq_check bq_verify(bq_gsl *g, const double *coeffs, long n) {
 }
 
 int main(int argc, char **argv) {
-	bq_opts o = {1000000, 5, 20000};
+	bq_opts o = {1000000, 5, 20000, 0};
 	for (int i = 1; i < argc; ++i) {
 		const char *a = argv[i];
 		const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -253,6 +267,10 @@ int main(int argc, char **argv) {
 			if (bq_parse_long("--runs", v, 1, BQ_MAX_RUNS, &o.runs))
 				return 2;
 			++i;
+		} else if (strcmp(a, "--show-failures") == 0) {
+			if (bq_parse_long("--show-failures", v, 0, 1000000, &o.show))
+				return 2;
+			++i;
 		} else if (strcmp(a, "--ref") == 0) {
 			if (bq_parse_long("--ref", v, 0, 100000000, &o.ref))
 				return 2;
@@ -265,6 +283,7 @@ int main(int argc, char **argv) {
 	}
 	if (o.ref > o.count)
 		o.ref = o.count;
+	bq_show_left = o.show;
 	gsl_set_error_handler_off();
 	bq_gsl g;
 	for (int k = 2; k <= 5; ++k)

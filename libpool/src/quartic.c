@@ -23,6 +23,11 @@
 // Horner's rounding (about 2n u) plus the rounding of the coefficients themselves.
 #define POOL_Q_TOUCH 16.0
 #define POOL_Q_MAX_ITER 200
+// Halley's iteration stops when its step is below this times |x|: the error left is of order its
+// cube. Roots: far below rounding. Critical points only need about sqrt(u) relative accuracy (an
+// error d in a critical point changes p there by p'' d^2 / 2, below rounding).
+#define POOL_Q_STOP_ROOT 1e-8
+#define POOL_Q_STOP_CRIT 1e-5
 
 typedef struct pool_q_val {
 	double x;  // point
@@ -88,7 +93,9 @@ static double pool_q_guess_step(const double *b, int n, const pool_q_val *v, int
 			t = t2;
 	}
 	double lead = fabs(b[n]);
-	if (!(t < INFINITY) || lead * pow(t, n) > af) {
+	double tn_pow = t * t;
+	tn_pow = n == 4 ? tn_pow * tn_pow : n == 3 ? tn_pow * t : tn_pow;
+	if (!(t < INFINITY) || lead * tn_pow > af) {
 		// The leading term alone reaches |f| sooner: its distance bounds the root's distance.
 		double tn = n == 4 ? sqrt(sqrt(af / lead)) : n == 3 ? cbrt(af / lead) : sqrt(af / lead);
 		if (tn < t)
@@ -99,9 +106,25 @@ static double pool_q_guess_step(const double *b, int n, const pool_q_val *v, int
 	return t;
 }
 
+// p, p', p'' at x (Halley's iteration).
+static inline double pool_q_eval_f2(const double *b, int n, double x, double *d1, double *d2) {
+	double f = b[n], d = 0.0, e = 0.0;
+	for (int k = n - 1; k >= 0; --k) {
+		e = e * x + d;
+		d = d * x + f;
+		f = f * x + b[k];
+	}
+	*d1 = d;
+	*d2 = 2.0 * e;
+	return f;
+}
+
 // The single root of p between a and c (p monotone there, signs at the ends opposite and non-zero).
-// a or c may be infinite. Returns NAN when no finite bracket could be built (overflow).
-static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val c) {
+// a or c may be infinite. Halley's iteration (cubic convergence) safeguarded by the bracket, which
+// every evaluation shrinks; stops when the step is below stop_rel |x| (the next error is then of
+// order stop_rel^3, far below rounding for stop_rel <= 1e-8). Returns NAN when no finite bracket
+// could be built (overflow).
+static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val c, double stop_rel) {
 	const int sa = a.sign;
 	double x;
 	if (!isfinite(a.x) || !isfinite(c.x)) {
@@ -141,32 +164,27 @@ static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val 
 		if (!(x > a.x && x < c.x))
 			x = pool_q_split(a.x, c.x);
 	}
-	double lo = a.x, hi = c.x, dx_prev = INFINITY;
+	double lo = a.x, hi = c.x;
 	for (int it = 0; it < POOL_Q_MAX_ITER; ++it) {
-		double d;
-		double f = pool_q_eval_fd(b, n, x, &d);
+		double d, d2;
+		double f = pool_q_eval_f2(b, n, x, &d, &d2);
 		if (f == 0.0)
 			return x;
 		if ((f > 0.0) - (f < 0.0) == sa)
 			lo = x;
 		else
 			hi = x;
-		double dx = f / d;
+		double den = d * d - 0.5 * f * d2;
+		double dx = den > 0.0 ? f * d / den : f / d;
 		double xn = x - dx;
+		double adx = fabs(dx);
+		if (adx <= stop_rel * fabs(x))
+			return fmin(fmax(xn, lo), hi); // the root is in [lo, hi]: never return outside
 		if (!(xn > lo && xn < hi)) {
-			// Newton left the bracket (or p' vanished): bisect instead.
+			// The step left the bracket (or p' vanished): bisect instead.
 			xn = pool_q_split(lo, hi);
 			if (!(xn > lo && xn < hi))
 				return x; // the bracket holds no other double: x is the root to rounding
-			dx_prev = INFINITY;
-		} else {
-			double adx = fabs(dx);
-			if (adx <= 4.0 * POOL_Q_U * fabs(xn))
-				return xn; // quadratic convergence: xn is accurate to rounding
-			// Steps no longer shrinking near the root: evaluation noise dominates.
-			if (adx >= dx_prev && adx <= 1e-7 * fabs(xn))
-				return xn;
-			dx_prev = adx;
 		}
 		x = xn;
 	}
@@ -175,7 +193,7 @@ static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val 
 
 // Roots of a degree-n polynomial b (b[n] != 0, coefficient of x^k in b[k]) in [lo, hi], ascending,
 // by multiplicity, at most n. lo/hi may be infinite. With first_only, stops at the first root.
-static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only);
+static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only, double stop_rel);
 
 static int pool_q_quadratic(const double *b, double lo, double hi, double *out) {
 	double b0 = b[0], b1 = b[1], b2 = b[2];
@@ -205,7 +223,7 @@ static int pool_q_quadratic(const double *b, double lo, double hi, double *out) 
 	return m;
 }
 
-static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only) {
+static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only, double stop_rel) {
 	if (n <= 0)
 		return 0;
 	if (n == 1) {
@@ -224,7 +242,7 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 	for (int k = 0; k < n; ++k)
 		d[k] = (double)(k + 1) * b[k + 1];
 	double crit[3];
-	int ncrit = pool_q_roots_in(d, n - 1, lo, hi, crit, false);
+	int ncrit = pool_q_roots_in(d, n - 1, lo, hi, crit, false, POOL_Q_STOP_CRIT);
 
 	int count = 0;
 	const int cap = first_only ? 1 : n;
@@ -238,7 +256,7 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 			return 1;
 		}
 		pool_q_val inf = {v.sign == (b[n] > 0.0 ? 1 : -1) ? -INFINITY : INFINITY, NAN, NAN, NAN, -v.sign};
-		double r = inf.x < 0.0 ? pool_q_bracketed(b, n, inf, v) : pool_q_bracketed(b, n, v, inf);
+		double r = inf.x < 0.0 ? pool_q_bracketed(b, n, inf, v, stop_rel) : pool_q_bracketed(b, n, v, inf, stop_rel);
 		if (r == r) {
 			out[0] = r;
 			return 1;
@@ -271,7 +289,7 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 		if (fabs(v.f) <= POOL_Q_TOUCH * POOL_Q_U * pool_q_abs_sum(b, n, cx))
 			v.sign = 0;
 		if (prev.sign != 0 && v.sign != 0 && prev.sign != v.sign) {
-			double r = pool_q_bracketed(b, n, prev, v);
+			double r = pool_q_bracketed(b, n, prev, v, stop_rel);
 			if (r == r && count < cap) {
 				out[count++] = r;
 				if (first_only)
@@ -298,7 +316,7 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 		last = pool_q_eval(b, n, hi);
 	}
 	if (prev.sign != 0 && last.sign != 0 && prev.sign != last.sign) {
-		double r = pool_q_bracketed(b, n, prev, last);
+		double r = pool_q_bracketed(b, n, prev, last, stop_rel);
 		if (r == r && count < cap)
 			out[count++] = r;
 	} else if (last.sign == 0 && count < cap) {
@@ -382,7 +400,7 @@ int pool_quartic_real_roots(const double c[5], double roots[4]) {
 	if (!c || !roots || !pool_q_prepare(c, &p))
 		return 0;
 	double y[4];
-	int m = pool_q_roots_in(p.b, p.n, -INFINITY, INFINITY, y, false);
+	int m = pool_q_roots_in(p.b, p.n, -INFINITY, INFINITY, y, false, POOL_Q_STOP_ROOT);
 	// Merge the exact zero roots in ascending order; drop roots that overflow when unscaled.
 	int count = 0, zeros = p.zeros;
 	for (int i = 0; i < m; ++i) {
@@ -412,7 +430,7 @@ int pool_quartic_smallest_root_in(const double c[5], double lo, double hi, doubl
 	// Only roots below 0 can beat an exact zero root.
 	if (zero_in)
 		yhi = fmin(yhi, 0.0);
-	int m = pool_q_roots_in(p.b, p.n, ylo, yhi, y, true);
+	int m = pool_q_roots_in(p.b, p.n, ylo, yhi, y, true, POOL_Q_STOP_ROOT);
 	if (m > 0) {
 		double x = pool_q_unscale(y[0], p.scale);
 		if (x >= lo && x <= hi && !(zero_in && x > 0.0)) {
