@@ -92,6 +92,7 @@ private:
 	std::vector<uint8_t> touch_rail_;     ///< n*segments: ball touching that cushion
 	std::vector<uint8_t> seen_ball_;      ///< contacts found in this step's collision pass
 	std::vector<uint8_t> seen_rail_;
+	std::vector<uint8_t> at_cushion_;     ///< per ball: touches a cushion in this step
 	std::vector<pool_engine_event> events_;
 	int64_t steps_ = 0;
 	double max_penetration_ = 0.0;
