@@ -16,6 +16,17 @@
 // removes a positive share (1 - e^2 and friction) of the pair's approach energy and needs an
 // approach speed above POOL_APPROACH_EPS, so the chain is finite for e < 1; for e = 1 and every
 // other pathological input, max_events ends the shot (POOL_STOP_MAX_EVENTS).
+//
+// Persistent (pushing) contact. When cloth friction drives two touching balls (or a ball and a
+// cushion) into each other, exact impulses form a Zeno sequence (collisions ever closer in time
+// with geometrically shrinking speeds) whose limit is a resting contact that point impulses
+// cannot represent; past it the bodies would interpenetrate. Until LINK handles such contacts,
+// planar mode gives every contact pushed back together a separation speed of at least
+// |a_n| POOL_CONTACT_MIN_INTERVAL / 2 (a_n the relative normal acceleration), so the next contact
+// is at least POOL_CONTACT_MIN_INTERVAL later. This only affects contacts slower than a few mm/s
+// and can add at most (m/4) (mu_slide g POOL_CONTACT_MIN_INTERVAL)^2 J per event (~1e-7 J);
+// such events are flagged (sim_internal.h) so tests can hold every other event to strict energy
+// non-increase.
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +37,7 @@
 #include "motion.h"
 #include "pool/sim.h"
 #include "predict.h"
+#include "sim_internal.h"
 #include "vec3.h"
 
 typedef struct ball_rt {
@@ -52,6 +64,7 @@ struct pool_sim {
 	pool_event_queue queue;
 
 	pool_event *events;
+	unsigned char *event_flags; // POOL_EVENT_FLAG_*
 	int n_events, cap_events;
 	pool_ball_state *states; // history: initial states, then every event's after-states
 	double *state_time;
@@ -162,7 +175,7 @@ void pool_sim_destroy(pool_sim *sim) {
 		return;
 	const pool_allocator a = sim->alloc;
 	void *arrays[] = {sim->cur, sim->rt, sim->keys, sim->heap, sim->hpos, sim->work,
-	                  sim->events, sim->states, sim->state_time, sim->state_prev};
+	                  sim->events, sim->event_flags, sim->states, sim->state_time, sim->state_prev};
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
 		mem_free(&a, arrays[i]);
 	mem_free(&a, sim);
@@ -226,9 +239,9 @@ static pool_result reserve_balls(pool_sim *sim, int need) {
 static pool_result reserve_history(pool_sim *sim, int events, int states) {
 	if (sim->n_events + events > sim->cap_events) {
 		int cap = next_cap(sim->cap_events, sim->n_events + events);
-		void **arrays[] = {(void **)&sim->events};
-		const size_t elems[] = {sizeof(pool_event)};
-		if (grow_arrays(sim, arrays, elems, 1, sim->n_events, cap))
+		void **arrays[] = {(void **)&sim->events, (void **)&sim->event_flags};
+		const size_t elems[] = {sizeof(pool_event), 1};
+		if (grow_arrays(sim, arrays, elems, 2, sim->n_events, cap))
 			return POOL_ERR_OUT_OF_MEMORY;
 		sim->cap_events = cap;
 	}
@@ -419,7 +432,9 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 
 static void push_event(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
                        const int *inv, int m) {
+	sim->event_flags[sim->n_events] = 0;
 	pool_event *e = &sim->events[sim->n_events++];
+	memset(e, 0, sizeof *e); // padding too: event lists compare bit for bit
 	e->time = t;
 	e->type = type;
 	e->rail = rail;
@@ -462,6 +477,35 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 	return pool_error_ok(error);
 }
 
+// Planar stand-in for persistent contact (see the top of this file): if the bodies' cloth
+// accelerations push them back together, they leave at least fast enough not to meet again
+// within POOL_CONTACT_MIN_INTERVAL. n: horizontal unit normal towards body 1; s2 NULL for a
+// cushion. Returns 1 when the floor was applied.
+static int separation_floor(const pool_params *p, pool_ball_state *s1, pool_ball_state *s2, pool_vec3 n) {
+	pool_vec3 a = pool_motion_accel(p, s1);
+	pool_vec3 v = s1->vel;
+	if (s2) {
+		a = pool_v3_sub(a, pool_motion_accel(p, s2));
+		v = pool_v3_sub(v, s2->vel);
+	}
+	const double an = pool_v3_dot(a, n), vn = pool_v3_dot(v, n);
+	if (!(an < 0.0))
+		return 0;
+	const double floor = -an * POOL_CONTACT_MIN_INTERVAL * 0.5;
+	if (vn >= floor)
+		return 0;
+	const double dv = floor - vn;
+	if (s2) {
+		s1->vel = pool_v3_madd(s1->vel, 0.5 * dv, n);
+		s2->vel = pool_v3_madd(s2->vel, -0.5 * dv, n);
+		pool_motion_derive(p, s2);
+	} else {
+		s1->vel = pool_v3_madd(s1->vel, dv, n);
+	}
+	pool_motion_derive(p, s1);
+	return 1;
+}
+
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.
 static void process(pool_sim *sim, int slot) {
 	const pool_params *p = &sim->def.params;
@@ -472,7 +516,7 @@ static void process(pool_sim *sim, int slot) {
 	pool_event_type type = (pool_event_type)key.kind;
 	pool_rail rail = POOL_RAIL_NONE;
 	pool_pocket pocket = POOL_POCKET_NONE;
-	int inv[2] = {slot, -1}, count = 1;
+	int inv[2] = {slot, -1}, count = 1, floored = 0;
 	pool_ball_state s[2];
 	state_now(sim, slot, now, &s[0]);
 	switch (type) {
@@ -485,6 +529,8 @@ static void process(pool_sim *sim, int slot) {
 		pool_collide(&s[0], R, m, NULL, R, 0.0, n, p->e_cushion, p->mu_cushion);
 		s[0].vel.z = 0.0;
 		pool_motion_derive(p, &s[0]);
+		pool_vec3 nh = pool_v3_xy(n);
+		floored = separation_floor(p, &s[0], NULL, pool_v3_scale(nh, 1.0 / pool_v3_len(nh)));
 		break;
 	}
 	case POOL_EVENT_POCKET:
@@ -514,6 +560,7 @@ static void process(pool_sim *sim, int slot) {
 			s[k].vel.z = 0.0;
 			pool_motion_derive(p, &s[k]);
 		}
+		floored = separation_floor(p, &s[0], &s[1], n);
 		break;
 	}
 	default: break;
@@ -521,6 +568,8 @@ static void process(pool_sim *sim, int slot) {
 	for (int k = 0; k < count; ++k)
 		start_segment(sim, inv[k], &s[k], now);
 	push_event(sim, now, type, rail, pocket, inv, count);
+	if (floored)
+		sim->event_flags[sim->n_events - 1] |= POOL_EVENT_FLAG_FLOOR;
 	sim->time = now;
 	sim->processed = now;
 	after_event(sim, inv, count, now);
@@ -617,4 +666,8 @@ const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_eve
 	if (!sim || !event || event->first_state < 0 || event->first_state >= sim->n_states)
 		return NULL;
 	return &sim->states[event->first_state];
+}
+
+int pool_sim_event_flags(const pool_sim *sim, int index) {
+	return sim && index >= 0 && index < sim->n_events ? sim->event_flags[index] : 0;
 }

@@ -1,0 +1,240 @@
+// Invariants over many random shots run to rest: termination, no interpenetration, balls stay on
+// the table, kinetic energy never increases across an event, momentum conserved in ball-ball
+// events, determinism (a rerun gives the same event list bit for bit).
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#include "motion.h"
+#include "pool/pool.h"
+#include "sim_internal.h"
+#include "vec3.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define DEFAULT_SHOTS 1000 // ASan+UBSan Debug build: same checks, fewer shots
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define DEFAULT_SHOTS 1000
+#endif
+#endif
+#ifndef DEFAULT_SHOTS
+#define DEFAULT_SHOTS 10000
+#endif
+
+static uint64_t rng = 0x9E3779B97F4A7C15ull;
+static double urand(void) {
+	rng ^= rng << 13;
+	rng ^= rng >> 7;
+	rng ^= rng << 17;
+	return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+typedef struct shot {
+	pool_ball_state balls[16];
+	int n;
+	pool_strike strike;
+} shot;
+
+// Random racks (frozen or with a small gap, 8- or 9-ball) and random layouts of 2-16 balls,
+// struck with random speed (0.05-8 m/s), direction, elevation and tip offset.
+static void make_shot(const pool_sim_def *def, int index, shot *s) {
+	const double R = def->params.ball_radius;
+	const double dc = sqrt(R * R - (def->table.cushion_height - R) * (def->table.cushion_height - R));
+	if (index % 3 != 2) {
+		double gap = urand() < 0.5 ? 0.0 : urand() * 2e-3;
+		s->n = pool_rack(urand() < 0.7 ? POOL_RACK_8BALL : POOL_RACK_9BALL, &def->table, &def->params, gap, s->balls, 16);
+		if (urand() < 0.5) { // the cue ball anywhere behind the head string
+			s->balls[0].pos.x = dc + urand() * (0.25 * def->table.length - dc);
+			s->balls[0].pos.y = dc + urand() * (def->table.width - 2.0 * dc);
+		}
+	} else {
+		int want = 2 + (int)(urand() * 15);
+		s->n = 0;
+		for (int tries = 0; s->n < want && tries < 2000; ++tries) {
+			pool_ball_state b;
+			memset(&b, 0, sizeof b);
+			b.id = s->n;
+			b.pos = pool_v3(dc + urand() * (def->table.length - 2 * dc), dc + urand() * (def->table.width - 2 * dc), R);
+			int ok = 1;
+			for (int j = 0; j < s->n; ++j)
+				ok &= pool_v3_len(pool_v3_sub(b.pos, s->balls[j].pos)) >= 2.0 * R;
+			if (ok)
+				s->balls[s->n++] = b;
+		}
+	}
+	s->strike.speed = 0.05 + urand() * 7.95;
+	s->strike.phi = urand() * 2.0 * M_PI;
+	s->strike.theta = urand() < 0.5 ? 0.0 : urand() * 1.4;
+	double r = 0.95 * R * sqrt(urand()), a = urand() * 2.0 * M_PI;
+	s->strike.a = r * cos(a);
+	s->strike.b = r * sin(a);
+	if (index % 3 == 0 && urand() < 0.3)
+		s->strike = pool_break_strike(0.5 + urand() * 7.5);
+}
+
+static void run_shot(pool_sim *sim, const shot *s) {
+	assert_int_equal(pool_sim_reset(sim, NULL, NULL), POOL_OK);
+	for (int i = 0; i < s->n; ++i)
+		assert_int_equal(pool_sim_add_ball(sim, &s->balls[i], NULL), POOL_OK);
+	assert_int_equal(pool_sim_strike(sim, 0, &s->strike, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+}
+
+static int active(const pool_ball_state *b) { return b->motion != POOL_MOTION_POCKETED && b->motion != POOL_MOTION_OFF_TABLE; }
+
+typedef struct stats {
+	double worst_overlap, worst_rail, worst_energy, worst_momentum;
+	long events, floored;
+	int max_events;
+} stats;
+
+// No two balls closer than 2R (to 1e-9 m), every ball inside the cushion contact lines.
+static void check_positions(const pool_sim_def *def, const pool_ball_state *b, int n, stats *st) {
+	const double R = def->params.ball_radius;
+	const double dc = sqrt(R * R - (def->table.cushion_height - R) * (def->table.cushion_height - R));
+	for (int i = 0; i < n; ++i) {
+		if (!active(&b[i]))
+			continue;
+		double out = fmax(fmax(dc - b[i].pos.x, b[i].pos.x - (def->table.length - dc)),
+		                  fmax(dc - b[i].pos.y, b[i].pos.y - (def->table.width - dc)));
+		st->worst_rail = fmax(st->worst_rail, out);
+		for (int j = i + 1; j < n; ++j)
+			if (active(&b[j]))
+				st->worst_overlap = fmax(st->worst_overlap, 2.0 * R - pool_v3_len(pool_v3_sub(b[i].pos, b[j].pos)));
+	}
+}
+
+static void check_shot(pool_sim *sim, const pool_sim_def *def, const shot *s, int dense, stats *st) {
+	const pool_params *p = &def->params;
+	assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_REST);
+	int ne;
+	const pool_event *ev = pool_sim_events(sim, &ne);
+	st->events += ne;
+	if (ne > st->max_events)
+		st->max_events = ne;
+	// Walk the events keeping each ball's segment start, to get the states just before each event.
+	pool_ball_state seg[16];
+	double t0[16];
+	for (int i = 0; i < s->n; ++i) {
+		seg[i] = s->balls[i];
+		t0[i] = 0.0;
+	}
+	pool_ball_state all[16];
+	for (int e = 0; e < ne; ++e) {
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[e]);
+		if (e > 0)
+			assert_true(ev[e].time >= ev[e - 1].time);
+		double e_before = 0.0, e_after = 0.0;
+		pool_vec3 p_before = {0, 0, 0}, p_after = {0, 0, 0};
+		for (int k = 0; k < ev[e].ball_count; ++k) {
+			int i = 0;
+			while (s->balls[i].id != after[k].id)
+				++i;
+			pool_ball_state before;
+			if (ev[e].type == POOL_EVENT_STRIKE)
+				before = seg[i];
+			else
+				pool_motion_evolve(p, &seg[i], ev[e].time - t0[i], &before);
+			e_before += pool_motion_energy(p, &before);
+			e_after += pool_motion_energy(p, &after[k]);
+			p_before = pool_v3_add(p_before, before.vel);
+			p_after = pool_v3_add(p_after, after[k].vel);
+			seg[i] = after[k];
+			t0[i] = ev[e].time;
+		}
+		if (ev[e].type != POOL_EVENT_STRIKE) {
+			double gain = e_after - e_before - 1e-12 * e_before;
+			if (pool_sim_event_flags(sim, e) & POOL_EVENT_FLAG_FLOOR) {
+				st->floored++;
+				// Bounded by the separation floor: (m/4) (2 mu_slide g dt_min)^2 for two balls.
+				double v = 2.0 * p->mu_slide * p->g * POOL_CONTACT_MIN_INTERVAL;
+				assert_true(gain <= 0.25 * p->ball_mass * v * v);
+			} else {
+				st->worst_energy = fmax(st->worst_energy, gain);
+			}
+		}
+		if (ev[e].type == POOL_EVENT_BALL_BALL) {
+			double dp = pool_v3_len(pool_v3_sub(p_after, p_before));
+			st->worst_momentum = fmax(st->worst_momentum, dp / (pool_v3_len(p_before) + 1e-300));
+		}
+		// Positions of every ball at each event time.
+		if (e + 1 == ne || ev[e + 1].time != ev[e].time) {
+			assert_int_equal(pool_sim_state_at(sim, ev[e].time, all), POOL_OK);
+			check_positions(def, all, s->n, st);
+			if (e + 1 < ne) { // and halfway to the next event
+				assert_int_equal(pool_sim_state_at(sim, 0.5 * (ev[e].time + ev[e + 1].time), all), POOL_OK);
+				check_positions(def, all, s->n, st);
+			}
+		}
+	}
+	if (dense) {
+		double T = pool_sim_time(sim);
+		for (int k = 0; k <= dense; ++k) {
+			assert_int_equal(pool_sim_state_at(sim, T * k / dense, all), POOL_OK);
+			check_positions(def, all, s->n, st);
+		}
+	}
+	// Everything at rest at the end.
+	const pool_ball_state *fin = pool_sim_balls(sim);
+	for (int i = 0; i < s->n; ++i)
+		assert_true(fin[i].motion == POOL_MOTION_STATIONARY || fin[i].motion == POOL_MOTION_POCKETED);
+}
+
+static void test_random_shots(void **state) {
+	(void)state;
+	int shots = DEFAULT_SHOTS;
+	const char *env = getenv("POOL_TEST_SHOTS");
+	if (env && atoi(env) > 0)
+		shots = atoi(env);
+	pool_sim_def def = pool_default_sim_def();
+	pool_sim *sim, *again;
+	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
+	assert_int_equal(pool_sim_create(&def, &again, NULL), POOL_OK);
+	stats st;
+	memset(&st, 0, sizeof st);
+	int reruns = 0;
+	for (int k = 0; k < shots; ++k) {
+		shot s;
+		make_shot(&def, k, &s);
+		run_shot(sim, &s);
+		check_shot(sim, &def, &s, k < 200 ? 2000 : 0, &st);
+		if (k % 50 == 0) { // determinism: a fresh run gives the same events and states, bit for bit
+			run_shot(again, &s);
+			int n1, n2;
+			const pool_event *e1 = pool_sim_events(sim, &n1), *e2 = pool_sim_events(again, &n2);
+			assert_int_equal(n1, n2);
+			assert_memory_equal(e1, e2, sizeof(pool_event) * (size_t)n1);
+			for (int e = 0; e < n1; ++e)
+				assert_memory_equal(pool_sim_event_states(sim, &e1[e]), pool_sim_event_states(again, &e2[e]),
+				                    sizeof(pool_ball_state) * (size_t)e1[e].ball_count);
+			++reruns;
+		}
+	}
+	printf("random shots: %d (%d rerun), events %ld (max %d per shot), floored %ld, worst overlap %.3g m, "
+	       "worst rail %.3g m, worst energy gain %.3g J, worst momentum error %.3g\n",
+	       shots, reruns, st.events, st.max_events, st.floored, st.worst_overlap, st.worst_rail, st.worst_energy,
+	       st.worst_momentum);
+	assert_true(st.worst_overlap <= 1e-9);
+	assert_true(st.worst_rail <= 1e-9);
+	assert_true(st.worst_energy <= 1e-15);
+	assert_true(st.worst_momentum <= 1e-12);
+	assert_true(st.max_events < def.max_events);
+	pool_sim_destroy(sim);
+	pool_sim_destroy(again);
+}
+
+int main(void) {
+	const struct CMUnitTest tests[] = {cmocka_unit_test(test_random_shots)};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
