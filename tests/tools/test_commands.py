@@ -8,6 +8,7 @@ import json
 import math
 import os
 import shutil
+import stat
 import subprocess
 import sys
 import unittest
@@ -183,6 +184,33 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
         r = sim(write("bad_overlap.json", bad), "-o", out)
         self.assertEqual(r.returncode, 2)
         self.assertEqual(os.listdir(directory), [])
+
+    def test_output_through_symlink_and_fifo(self):
+        # -o replaces the file a link points to (the link stays), and writes pipes in place.
+        path = write("ok_link.json", straight_shot())
+        expected = sim(path).stdout
+        target = os.path.join(ARGS.work, "link_target.json")
+        link = os.path.join(ARGS.work, "link.json")
+        for p in (target, link):
+            if os.path.lexists(p):
+                os.unlink(p)
+        os.symlink("link_target.json", link)
+        for _ in range(2):  # dangling first, then an existing target
+            r = sim(path, "-o", link)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertTrue(os.path.islink(link))
+            with open(target, "rb") as f:
+                self.assertEqual(f.read(), expected)
+        fifo = os.path.join(ARGS.work, "result.fifo")
+        if os.path.lexists(fifo):
+            os.unlink(fifo)
+        os.mkfifo(fifo)
+        proc = subprocess.Popen([ARGS.pool_sim, path, "-o", fifo], stderr=subprocess.PIPE)
+        with open(fifo, "rb") as f:
+            data = f.read()
+        self.assertEqual(proc.wait(timeout=60), 0)
+        self.assertEqual(data, expected)
+        self.assertTrue(stat.S_ISFIFO(os.lstat(fifo).st_mode))
 
     def test_unwritable_output_is_reported(self):
         r = sim(write("ok.json", straight_shot()), "-o", os.path.join(ARGS.work, "no", "such", "dir.json"))
@@ -394,6 +422,10 @@ class TestPlot(unittest.TestCase):
         width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
         self.assertGreater(width, 1000)
         self.assertAlmostEqual(width / height, 1.65, delta=0.3)
+        again = os.path.join(ARGS.work, "break2.png")
+        self.assertEqual(self.plot(self.result, "-o", again).returncode, 0)
+        with open(again, "rb") as f:
+            self.assertEqual(f.read(), data, "the same result must give the same picture")
 
     def test_svg(self):
         out = os.path.join(ARGS.work, "break.svg")
@@ -403,6 +435,19 @@ class TestPlot(unittest.TestCase):
             text = f.read()
         self.assertIn("<svg", text)
         self.assertIn("</svg>", text)
+
+    def test_pipe_output(self):
+        fifo = os.path.join(ARGS.work, "plot.fifo.png")
+        if os.path.lexists(fifo):
+            os.unlink(fifo)
+        os.mkfifo(fifo)
+        proc = subprocess.Popen([ARGS.python, ARGS.pool_plot, self.result, "-o", fifo],
+                                stderr=subprocess.PIPE)
+        with open(fifo, "rb") as f:
+            data = f.read()
+        self.assertEqual(proc.wait(timeout=180), 0)
+        self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n")
+        self.assertTrue(stat.S_ISFIFO(os.lstat(fifo).st_mode))
 
     def test_bad_input(self):
         bad = write("not_a_result.json", json.dumps({"format": "libpool-scenario/1"}))

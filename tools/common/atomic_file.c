@@ -1,6 +1,6 @@
 // Atomic whole-file writes: temporary file in the target's directory, then rename(2), which
 // replaces the target in one step on POSIX file systems.
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 // realpath, fchmod, mkstemp
 #include "atomic_file.h"
 
 #include <errno.h>
@@ -10,12 +10,44 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+// Devices and pipes (/dev/null, /dev/stdout, a FIFO) are written in place: renaming a temporary
+// file over them would replace the device node itself.
+static int write_in_place(const char *path, const char *data, size_t length, char *err,
+                          size_t err_size) {
+	FILE *f = fopen(path, "wb");
+	if (!f) {
+		snprintf(err, err_size, "%s: %s", path, strerror(errno));
+		return -1;
+	}
+	size_t done = fwrite(data, 1, length, f);
+	int saved = errno;
+	if (fclose(f) != 0 && done == length)
+		saved = errno, done = 0;
+	if (done != length) {
+		snprintf(err, err_size, "%s: %s", path, strerror(saved ? saved : EIO));
+		return -1;
+	}
+	return 0;
+}
+
 int pool_write_file_atomic(const char *path, const char *data, size_t length, char *err,
                            size_t err_size) {
+	struct stat st;
+	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode))
+		return write_in_place(path, data, length, err, err_size);
+	// Through a symbolic link, replace the file it points to, not the link.
+	char *real = NULL;
+	if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
+		real = realpath(path, NULL);
+		if (!real) // dangling link: let open(2) create its target
+			return write_in_place(path, data, length, err, err_size);
+		path = real;
+	}
 	size_t n = strlen(path);
 	char *temp = malloc(n + 16);
 	if (!temp) {
 		snprintf(err, err_size, "%s: out of memory", path);
+		free(real);
 		return -1;
 	}
 	// Same directory as the target, so rename never crosses file systems.
@@ -24,6 +56,7 @@ int pool_write_file_atomic(const char *path, const char *data, size_t length, ch
 	if (fd < 0) {
 		snprintf(err, err_size, "%s: %s", path, strerror(errno));
 		free(temp);
+		free(real);
 		return -1;
 	}
 	size_t done = 0;
@@ -52,5 +85,6 @@ int pool_write_file_atomic(const char *path, const char *data, size_t length, ch
 		unlink(temp);
 	}
 	free(temp);
+	free(real);
 	return ok ? 0 : -1;
 }
