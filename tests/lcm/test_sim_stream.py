@@ -22,13 +22,30 @@ for name in ("short", "cut", "bank", "break"):
                             args.types_dir, "--json", "--count", "1", "--timeout", "20"],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     u.wait_for_line(sub, "subscribed")
+    csub = subprocess.Popen([os.path.join(args.bin_dir, "pool-lcm-subscribe"), "--lcm-url", u.URL,
+                             "--count", "1", "--timeout", "20"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     live = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT"])
+    time.sleep(0.2)  # the C subscriber prints nothing until messages arrive
     out = os.path.join(args.work_dir, name + ".lcm-run.json")
     subprocess.run([pool_sim, scenario, "--lcm-url", u.URL, "-o", out], check=True, timeout=60,
                    env=env)
     stdout, stderr = sub.communicate(timeout=30)
     u.check(sub.returncode == 0, "%s: subscriber exit %d: %s" % (name, sub.returncode, stderr))
     got = json.loads(stdout.strip().splitlines()[-1])
+    # The C example: one line per event, then one for the shot.
+    cout, cerr = csub.communicate(timeout=30)
+    lines = cout.strip().splitlines()
+    u.check(csub.returncode == 0 and len(lines) == len(want["events"]) + 1 and
+            lines[-1].startswith("shot ") and ("events=%d " % len(want["events"])) in lines[-1] and
+            all(line.startswith("event ") for line in lines[:-1]),
+            "%s: pool-lcm-subscribe printed %r (exit %r, %s)" % (name, lines[-2:], csub.returncode,
+                                                                 cerr))
+    if len(lines) > 1:
+        first = want["events"][1]
+        u.check(lines[1].split()[3] == "t=%r" % first["t"] or
+                float(lines[1].split()[3][2:]) == first["t"],
+                "%s: C subscriber event line %r" % (name, lines[1]))
     u.compare_result(got, want, name + " (POOL_SHOT via pool_lcm_subscribe.py --json)")
     # Publishing changes nothing in the result file.
     with open(out) as f:

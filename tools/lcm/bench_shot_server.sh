@@ -1,0 +1,26 @@
+#!/bin/sh
+# Load benchmark of pool-shot-server, inside a private network namespace (multicast stays on its
+# loopback): short shots, then breaks. Prints per-run figures, median and minimum, and the machine.
+# usage: tools/lcm/bench_shot_server.sh [BUILD_DIR] [extra pool-bench-shot-server options]
+set -eu
+ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
+BUILD="${1:-$ROOT/build/release}"
+[ $# -gt 0 ] && shift
+if [ -z "${POOL_IN_NETNS:-}" ]; then
+  export POOL_IN_NETNS=1
+  exec unshare --net sh -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo && exec "$@"' \
+    netns "$0" "$BUILD" "$@"
+fi
+URL='udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608'
+DATA="$ROOT/tests/lcm/data"
+"$BUILD/tools/pool-shot-server" --lcm-url "$URL" 2>"${TMPDIR:-/tmp}/pool-shot-server-bench.log" &
+SERVER=$!
+trap 'kill $SERVER 2>/dev/null || true' EXIT
+sleep 0.3
+"$BUILD/tools/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/short.json" \
+  --name "short shot (1 ball, 3 events)" "$@"
+"$BUILD/tools/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/break.json" \
+  --name "break (16 balls, 229 events)" "$@"
+kill -TERM $SERVER
+wait $SERVER || true
+tail -1 "${TMPDIR:-/tmp}/pool-shot-server-bench.log"
