@@ -272,6 +272,11 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("max_time", with_(lambda d: d.update(options={"max_time": 0})), "options.max_time"),
             ("max_events", with_(lambda d: d.update(options={"max_events": 2.5})), "options.max_events"),
             ("empty_file", "", "(document)"),
+            ("theta_90", with_(lambda d: d["strike"].update(theta=90)), "strike.theta: must be in [0, 90) degrees"),
+            ("theta_negative", with_(lambda d: d["strike"].update(theta=-5)), "strike.theta"),
+            ("strike_moving", with_(ball(0, vel=[1.0, 0.0])), "strike.ball"),
+            ("below_cloth", with_(ball(1, pos=[1.9, 0.6, 0.01])), "balls[1].pos"),
+            ("radius_too_big", with_(lambda d: d.update(params={"ball_radius": 1.0})), "params.ball_radius"),
         ]
         for name, text, expect in cases:
             with self.subTest(name=name):

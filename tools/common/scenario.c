@@ -37,11 +37,20 @@ static int fail(parse_ctx *ctx, const char *format, ...) {
 
 // A libpool message normally starts with the field path ("params.mu_slide: ..."); when it does
 // not, prefix the path of the object we handed over.
-static int fail_lib(parse_ctx *ctx, const char *path, pool_result code, const pool_error *e) {
-	const char *message = e->message[0] ? e->message : pool_result_str(code);
+static bool starts_with_path(const char *message, const char *path) {
 	size_t n = strlen(path);
-	if (strncmp(message, path, n) == 0 && (message[n] == '.' || message[n] == ':' || message[n] == '['))
+	return strncmp(message, path, n) == 0 &&
+	       (message[n] == '.' || message[n] == ':' || message[n] == '[');
+}
+
+static int fail_lib(parse_ctx *ctx, const char *path, pool_result code, const pool_error *e) {
+	static const char *const roots[] = {"table", "params", "balls", "strike", "options", NULL};
+	const char *message = e->message[0] ? e->message : pool_result_str(code);
+	if (starts_with_path(message, path))
 		return fail(ctx, "%s", message);
+	for (const char *const *root = roots; *root; ++root)
+		if (starts_with_path(message, *root))
+			return fail(ctx, "%s", message);
 	return fail(ctx, "%s: %s", path, message);
 }
 
@@ -319,6 +328,9 @@ static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
 		double x = 0.0;
 		if (v && get_number(ctx, v, path, &x))
 			return -1;
+		// The library checks the same range in radians; say it in the file's unit.
+		if (optional[i].field == &s->strike.theta && !(x >= 0.0 && x < 90.0))
+			return fail(ctx, "strike.theta: must be in [0, 90) degrees");
 		*optional[i].field = x * optional[i].scale;
 	}
 	s->has_strike = true;
@@ -329,28 +341,33 @@ static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
 // simulation: pool_sim_add_ball rejects duplicates, overlaps and off-table balls and names the
 // ball "balls[i]" with i its insertion index, which is also its index in the file.
 static int check_with_sim(parse_ctx *ctx, const pool_scenario *s) {
-	// Overlaps first, here, so the message has the documented form
-	// "balls[2].pos: overlaps ball 1 by 0.003 m" whatever the library's wording.
-	double radius = s->def.params.ball_radius;
-	for (int j = 0; j < s->ball_count; ++j) {
-		for (int i = 0; i < j; ++i) {
-			if (s->balls[i].id == s->balls[j].id)
-				return fail(ctx, "balls[%d].id: duplicate id %d (also balls[%d])", j,
-				            (int)s->balls[j].id, i);
-			double dx = s->balls[j].pos.x - s->balls[i].pos.x;
-			double dy = s->balls[j].pos.y - s->balls[i].pos.y;
-			double dz = s->balls[j].pos.z - s->balls[i].pos.z;
-			double depth = 2.0 * radius - sqrt(dx * dx + dy * dy + dz * dz);
-			if (depth > POOL_TOUCH_TOLERANCE)
-				return fail(ctx, "balls[%d].pos: overlaps ball %d by %.3g m", j, (int)s->balls[i].id,
-				            depth);
-		}
-	}
+	// The def as a whole first (e.g. a ball too big for the table), then the balls.
 	pool_sim *sim = NULL;
 	pool_error e = {{0}};
 	pool_result r = pool_sim_create(&s->def, &sim, &e);
 	if (r != POOL_OK)
 		return fail_lib(ctx, "options", r, &e);
+	// Overlaps here, so the message has the documented form
+	// "balls[2].pos: overlaps ball 1 by 0.003 m" whatever the library's wording.
+	double radius = s->def.params.ball_radius;
+	for (int j = 0; j < s->ball_count; ++j) {
+		for (int i = 0; i < j; ++i) {
+			if (s->balls[i].id == s->balls[j].id) {
+				pool_sim_destroy(sim);
+				return fail(ctx, "balls[%d].id: duplicate id %d (also balls[%d])", j,
+				            (int)s->balls[j].id, i);
+			}
+			double dx = s->balls[j].pos.x - s->balls[i].pos.x;
+			double dy = s->balls[j].pos.y - s->balls[i].pos.y;
+			double dz = s->balls[j].pos.z - s->balls[i].pos.z;
+			double depth = 2.0 * radius - sqrt(dx * dx + dy * dy + dz * dz);
+			if (depth > POOL_TOUCH_TOLERANCE) {
+				pool_sim_destroy(sim);
+				return fail(ctx, "balls[%d].pos: overlaps ball %d by %.3g m", j,
+				            (int)s->balls[i].id, depth);
+			}
+		}
+	}
 	int status = 0;
 	for (int i = 0; i < s->ball_count && status == 0; ++i) {
 		memset(&e, 0, sizeof e);
@@ -408,8 +425,9 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 		return fail(ctx, "balls: missing");
 	if (!json_is_array(balls) || json_array_size(balls) == 0)
 		return fail(ctx, "balls: must be a non-empty array");
-	if (json_array_size(balls) > 100000)
-		return fail(ctx, "balls: too many balls (limit 100000)");
+	// The overlap check below is quadratic; no table holds more than a few dozen balls anyway.
+	if (json_array_size(balls) > 10000)
+		return fail(ctx, "balls: too many balls (limit 10000)");
 	s->balls = calloc(json_array_size(balls), sizeof *s->balls);
 	if (!s->balls)
 		return fail(ctx, "balls: out of memory");
