@@ -69,6 +69,9 @@ Settings default_settings() {
 	s.release_gap = 1e-5;
 	s.cloth_gap = 1e-6;
 	s.settle_speed = 0.05;
+	// Contacts approaching faster than 0.1 mm/s are impacts (planar mode solves them without
+	// the cloth, see Engine::step); slower ones are resting contacts and keep the cloth.
+	s.impact_speed = 1e-4;
 	return s;
 }
 
@@ -182,7 +185,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	seen_ball_.assign(n * n, 0);
 	touch_rail_.assign(n * ns, 0);
 	seen_rail_.assign(n * ns, 0);
-	at_cushion_.assign(n, 0);
+	impact_.assign(n, 0);
 	// Contacts that already exist at t = 0 (a frozen rack) are not collisions.
 	for (size_t i = 0; i < n; ++i) {
 		const dReal *pi = dBodyGetPosition(balls_[i].body);
@@ -239,7 +242,6 @@ void Engine::near(dGeomID g1, dGeomID g2) {
 		const size_t s = size_t(-(t1 > 0 ? t2 : t1) - 1);
 		const size_t k = i * rails_.size() + s;
 		seen_rail_[k] = 1;
-		at_cushion_[i] = 1;
 		if (!touch_rail_[k]) {
 			touch_rail_[k] = 1;
 			report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[i].id, -1, t);
@@ -250,6 +252,21 @@ void Engine::near(dGeomID g1, dGeomID g2) {
 	max_penetration_ = std::max(max_penetration_, double(c.geom.depth));
 
 	dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+	const dReal *p = c.geom.pos, *n = c.geom.normal;
+	dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};
+	if (b1)
+		dBodyGetPointVel(b1, p[0], p[1], p[2], v1);
+	if (b2)
+		dBodyGetPointVel(b2, p[0], p[1], p[2], v2);
+	const double rel[3] = {v1[0] - v2[0], v1[1] - v2[1], v1[2] - v2[2]};
+	const double rn = rel[0] * n[0] + rel[1] * n[1] + rel[2] * n[2];
+	if (-rn > settings_.impact_speed) {
+		// n points into body 1: rn < 0 means approaching.
+		if (t1 > 0)
+			impact_[size_t(t1 - 1)] = 1;
+		if (t2 > 0)
+			impact_[size_t(t2 - 1)] = 1;
+	}
 	// Restitution as a target separation speed, with no threshold: every approach bounces.
 	c.surface.mode = dContactBounce;
 	c.surface.bounce = e;
@@ -259,16 +276,8 @@ void Engine::near(dGeomID g1, dGeomID g2) {
 		// slip at the contact so ODE's friction box acts like Coulomb's cone for this contact.
 		c.surface.mode |= dContactApprox1 | dContactFDir1;
 		c.surface.mu = mu;
-		const dReal *p = c.geom.pos, *n = c.geom.normal;
-		dVector3 v1 = {0, 0, 0, 0}, v2 = {0, 0, 0, 0};
-		if (b1)
-			dBodyGetPointVel(b1, p[0], p[1], p[2], v1);
-		if (b2)
-			dBodyGetPointVel(b2, p[0], p[1], p[2], v2);
-		double rel[3] = {v1[0] - v2[0], v1[1] - v2[1], v1[2] - v2[2]};
-		double rn = rel[0] * n[0] + rel[1] * n[1] + rel[2] * n[2];
-		double tg[3] = {rel[0] - rn * n[0], rel[1] - rn * n[1], rel[2] - rn * n[2]};
-		double tl = std::sqrt(tg[0] * tg[0] + tg[1] * tg[1] + tg[2] * tg[2]);
+		const double tg[3] = {rel[0] - rn * n[0], rel[1] - rn * n[1], rel[2] - rn * n[2]};
+		const double tl = std::sqrt(tg[0] * tg[0] + tg[1] * tg[1] + tg[2] * tg[2]);
 		if (tl > 1e-12) {
 			c.fdir1[0] = tg[0] / tl;
 			c.fdir1[1] = tg[1] / tl;
@@ -344,14 +353,16 @@ void Engine::add_cloth_contact(size_t i) {
 bool Engine::step() {
 	std::fill(seen_ball_.begin(), seen_ball_.end(), 0);
 	std::fill(seen_rail_.begin(), seen_rail_.end(), 0);
-	std::fill(at_cushion_.begin(), at_cushion_.end(), 0);
+	std::fill(impact_.begin(), impact_.end(), 0);
 	dSpaceCollide(space_, this, &near_callback);
 	for (size_t i = 0; i < balls_.size(); ++i) {
-		// Planar mode, as libpool: a cushion impulse acts alone along its 3D normal and the
-		// vertical velocity it leaves is then dropped. Solving it together with the cloth
-		// contact would let the cloth take the impulse's downward part and add cloth friction
-		// (about 0.2 m/s less rail-parallel speed at 2 m/s), which libpool's planar model lacks.
-		if (!balls_[i].active || (!airborne_ && at_cushion_[i]))
+		// Planar mode, as libpool: an impact's impulse acts alone along its 3D normal and the
+		// vertical velocity it leaves is then dropped. Solved together with the cloth contact,
+		// the cloth would take the impulse's vertical part (the cushion normal's downward tilt,
+		// the ball-ball friction of spinning balls) and add cloth friction to the impact:
+		// 0.2 m/s less rail-parallel speed off a cushion at 2 m/s, and a cut ball thrown 0.2
+		// degrees off by the friction box of a ball at rest. Resting contacts keep the cloth.
+		if (!balls_[i].active || (!airborne_ && impact_[i]))
 			continue;
 		add_cloth_contact(i);
 	}

@@ -27,6 +27,7 @@ struct Settings {
 	double release_gap;      ///< m, gap beyond which a touching pair counts as separated
 	double cloth_gap;        ///< m, height above the cloth still counted as on it (airborne mode)
 	double settle_speed;     ///< m/s, slowest landing that still bounces (airborne mode)
+	double impact_speed;     ///< m/s, approach speed above which a contact is an impact
 };
 
 /// The model's default settings.
@@ -92,7 +93,7 @@ private:
 	std::vector<uint8_t> touch_rail_;     ///< n*segments: ball touching that cushion
 	std::vector<uint8_t> seen_ball_;      ///< contacts found in this step's collision pass
 	std::vector<uint8_t> seen_rail_;
-	std::vector<uint8_t> at_cushion_;     ///< per ball: touches a cushion in this step
+	std::vector<uint8_t> impact_;         ///< per ball: in an impact in this step
 	std::vector<pool_engine_event> events_;
 	int64_t steps_ = 0;
 	double max_penetration_ = 0.0;

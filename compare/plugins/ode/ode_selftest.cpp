@@ -232,35 +232,143 @@ void test_angle(double dt, double b_offset) {
 	api->destroy(r.engine);
 }
 
-// A ball sent into the west cushion: contact when its centre reaches the touch distance
-// d0 = sqrt(R^2 - (h - R)^2) from the nose line, then it comes back.
+// Petit's impulse law (PHYSICS.md) against an immovable obstacle with unit normal n towards
+// the ball, then v_z dropped (planar mode): the oracle for a cushion hit.
+void petit_static(const double n[3], double e, double mu, double v[3], double w[3]) {
+	double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+	double nxw[3] = {n[1] * w[2] - n[2] * w[1], n[2] * w[0] - n[0] * w[2], n[0] * w[1] - n[1] * w[0]};
+	double vc[3], vcl = 0.0;
+	for (int k = 0; k < 3; ++k) {
+		vc[k] = v[k] - vn * n[k] + kR * nxw[k];
+		vcl += vc[k] * vc[k];
+	}
+	vcl = std::sqrt(vcl);
+	const double p = (1.0 + e) * (-vn); // P / M1
+	const bool slipping = vcl > 0.0 && 1.0 - 3.5 * mu * p / vcl >= 0.0;
+	double nxvc[3] = {n[1] * vc[2] - n[2] * vc[1], n[2] * vc[0] - n[0] * vc[2],
+	                  n[0] * vc[1] - n[1] * vc[0]};
+	for (int k = 0; k < 3; ++k) {
+		if (slipping) {
+			v[k] += p * (n[k] - mu * vc[k] / vcl);
+			w[k] += 5.0 * mu * p / (2.0 * kR) * nxvc[k] / vcl;
+		} else {
+			v[k] += p * n[k] - 2.0 / 7.0 * vc[k];
+			w[k] += 5.0 / (7.0 * kR) * nxvc[k];
+		}
+	}
+	v[2] = 0.0;
+}
+
+// A sliding ball sent into the west cushion at an angle: contact when its centre reaches the
+// touch distance d0 = sqrt(R^2 - (h - R)^2) from the nose line, and the velocities after it
+// as Petit's law gives them for the state the closed form predicts at contact.
 void test_cushion(double dt) {
-	const double h = 0.03629, x0 = 0.5, v0 = 2.0;
+	const double h = 0.03629, x0 = 0.5, vx0 = -2.0, vy0 = 0.5, e_c = 0.85, mu_c = 0.2;
 	const double d0 = std::sqrt(kR * kR - (h - kR) * (h - kR));
-	// Sliding throughout (pure slide lasts 0.29 s): x0 - v0 t + mu g t^2 / 2 = d0.
-	const double a = 0.5 * kMuSlide * kG;
-	const double t_hit = (v0 - std::sqrt(v0 * v0 - 4.0 * a * (x0 - d0))) / (2.0 * a);
+	// Pure slide (no initial spin) lasts 2 |v0| / (7 mu g) = 0.30 s: still sliding at contact.
+	const double v0 = std::hypot(vx0, vy0), ux = vx0 / v0, uy = vy0 / v0;
+	const double a = 0.5 * kMuSlide * kG * (-ux); // x(t) = x0 + vx0 t + a t^2
+	const double t_hit = (-vx0 - std::sqrt(vx0 * vx0 - 4.0 * a * (x0 - d0))) / (2.0 * a);
+	const double s = v0 - kMuSlide * kG * t_hit, k_w = 5.0 * kMuSlide * kG * t_hit / (2.0 * kR);
+	double v[3] = {s * ux, s * uy, 0.0};
+	double w[3] = {-k_w * uy, k_w * ux, 0.0}; // (5 mu g t / 2R) (k x u)
+	const double n[3] = {d0 / kR, 0.0, (kR - h) / kR};
+	petit_static(n, e_c, mu_c, v, w);
 	Run r;
 	r.engine = create(fmt("{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 3, \"pos\": "
-	                      "[%g, 0.635], \"vel\": [%g, 0]}]}",
-	                      x0, -v0),
+	                      "[%g, 0.635], \"vel\": [%g, %g]}]}",
+	                      x0, vx0, vy0),
 	                  dt);
 	if (!r.engine) {
 		++failures;
 		return;
 	}
-	api->advance(r.engine, t_hit + 0.05);
+	api->advance(r.engine, t_hit + 1.5 * dt);
 	collect(&r);
 	const pool_engine_event *e = find_event(r, POOL_ENGINE_EVENT_BALL_CUSHION, 3);
 	const double err = e ? e->t - t_hit : 1e9;
 	check(e && err >= -1e-12 && err <= dt + 1e-12,
 	      fmt("cushion (dt %g): contact time error, within one step (s)", dt).c_str(), err, dt);
-	check(r.balls[0].vel[0] > 0.0 && r.balls[0].state == 2,
-	      fmt("cushion (dt %g): ball comes back sliding (vx m/s)", dt).c_str(), r.balls[0].vel[0],
-	      0.0);
+	if (e)
+		api->advance(r.engine, e->t + dt); // the contact is resolved in the step it is found
+	collect(&r);
+	double dv = 0.0, dw = 0.0;
+	for (int k = 0; k < 3; ++k) {
+		dv = std::max(dv, std::fabs(r.balls[0].vel[k] - v[k]));
+		dw = std::max(dw, std::fabs(r.balls[0].omega[k] - w[k]) * kR);
+	}
+	std::printf("  cushion dt %g: after v (%.5f, %.5f) w (%.4f, %.4f, %.4f); Petit v (%.5f, %.5f) "
+	            "w (%.4f, %.4f, %.4f)\n",
+	            dt, r.balls[0].vel[0], r.balls[0].vel[1], r.balls[0].omega[0], r.balls[0].omega[1],
+	            r.balls[0].omega[2], v[0], v[1], w[0], w[1], w[2]);
+	const double tol = 10.0 * kMuSlide * kG * dt + 1e-3;
+	check(dv < tol, fmt("cushion (dt %g): velocity after vs Petit (m/s)", dt).c_str(), dv, tol);
+	check(dw < tol, fmt("cushion (dt %g): R * spin after vs Petit (m/s)", dt).c_str(), dw, tol);
 	check(r.stats.max_penetration < v0 * dt + 1e-6,
 	      fmt("cushion (dt %g): penetration below v dt (m)", dt).c_str(), r.stats.max_penetration,
 	      v0 * dt);
+	api->destroy(r.engine);
+}
+
+// A 30 degree cut with a rolling cue ball (e_ball 0.95, mu_ball 0.06): the object ball's
+// direction and speed after contact against Petit's two-ball law at the exact contact.
+void test_cut(double dt, double angle_bound) {
+	const double v0 = 2.0, cut = 30.0 * kPi / 180.0, xc0 = 0.6, y0 = 0.635, e_b = 0.95, mu_b = 0.06;
+	const double xo = 1.2, yo = y0 + 2.0 * kR * std::sin(cut);
+	const double x_hit = xo - 2.0 * kR * std::cos(cut);
+	// Rolling: x = xc0 + v0 t - mu_roll g t^2 / 2.
+	const double a = 0.5 * kMuRoll * kG;
+	const double t_hit = (v0 - std::sqrt(v0 * v0 - 4.0 * a * (x_hit - xc0))) / (2.0 * a);
+	const double v = v0 - kMuRoll * kG * t_hit;
+	double v1[3] = {v, 0, 0}, w1[3] = {0, v / kR, 0}, v2[3] = {0, 0, 0};
+	const double n[3] = {(x_hit - xo) / (2.0 * kR), (y0 - yo) / (2.0 * kR), 0.0};
+	double rel[3], vc[3], vcl = 0.0, reln = 0.0;
+	for (int k = 0; k < 3; ++k) {
+		rel[k] = v1[k] - v2[k];
+		reln += rel[k] * n[k];
+	}
+	const double rw[3] = {kR * w1[0], kR * w1[1], kR * w1[2]};
+	const double nxrw[3] = {n[1] * rw[2] - n[2] * rw[1], n[2] * rw[0] - n[0] * rw[2],
+	                        n[0] * rw[1] - n[1] * rw[0]};
+	for (int k = 0; k < 3; ++k) {
+		vc[k] = rel[k] - reln * n[k] + nxrw[k];
+		vcl += vc[k] * vc[k];
+	}
+	vcl = std::sqrt(vcl);
+	const double p = (1.0 + e_b) * (-reln) / 2.0; // P / M1 with M1 / M2 = 1
+	const bool slipping = vcl > 0.0 && 1.0 - 3.5 * mu_b * 2.0 * p / vcl >= 0.0;
+	double v1n[3];
+	for (int k = 0; k < 3; ++k)
+		v1n[k] = slipping ? v1[k] + p * (n[k] - mu_b * vc[k] / vcl)
+		                  : v1[k] + p * n[k] - 2.0 / 7.0 * vc[k] / 2.0;
+	for (int k = 0; k < 3; ++k)
+		v2[k] = v2[k] + (v1[k] - v1n[k]);
+	const double want_angle = std::atan2(v2[1], v2[0]) * 180.0 / kPi, want_speed = std::hypot(v2[0], v2[1]);
+	Run r;
+	r.engine = create(fmt("{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": "
+	                      "[%g, %.17g], \"vel\": [%g, 0], \"omega\": [0, %.17g, 0]}, {\"id\": 1, "
+	                      "\"pos\": [%g, %.17g]}]}",
+	                      xc0, y0, v0, v0 / kR, xo, yo),
+	                  dt);
+	if (!r.engine) {
+		++failures;
+		return;
+	}
+	api->advance(r.engine, t_hit + 1.5 * dt);
+	collect(&r);
+	const pool_engine_event *e = find_event(r, POOL_ENGINE_EVENT_BALL_BALL, 0);
+	const double angle = std::atan2(r.balls[1].vel[1], r.balls[1].vel[0]) * 180.0 / kPi;
+	const double speed = std::hypot(r.balls[1].vel[0], r.balls[1].vel[1]);
+	std::printf("  cut dt %g: contact at %+.2e s, object ball %.4f deg %.5f m/s; Petit %.4f deg "
+	            "%.5f m/s (%s)\n",
+	            dt, e ? e->t - t_hit : 0.0, angle, speed, want_angle, want_speed,
+	            slipping ? "slipping" : "sticking");
+	check(e && std::fabs(angle - want_angle) < angle_bound,
+	      fmt("30 deg cut (dt %g): object ball direction error (deg)", dt).c_str(), angle - want_angle,
+	      angle_bound);
+	check(std::fabs(speed / want_speed - 1.0) < 0.01,
+	      fmt("30 deg cut (dt %g): object ball speed error (relative)", dt).c_str(),
+	      speed / want_speed - 1.0, 0.01);
 	api->destroy(r.engine);
 }
 
@@ -438,6 +546,8 @@ int main(int argc, char **argv) {
 	test_angle(1e-3, 0.5 * kR);
 	test_angle(1e-4, -0.4 * kR);
 	test_cushion(1e-3);
+	test_cut(1e-3, 1.0);
+	test_cut(1e-4, 0.1);
 	test_cushion(1e-4);
 	test_pockets();
 	test_rejections();
