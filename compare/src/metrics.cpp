@@ -117,12 +117,13 @@ int pocket_mismatches(const std::vector<BallSample> &engine, const std::vector<B
 	return count;
 }
 
-void compare_events(const std::vector<Event> &engine_all, const std::vector<Event> &reference, double end_time,
-                    Record *rec) {
-	// Engines stepping past end_time may report events the reference never reached.
+void compare_events(const std::vector<Event> &engine_all, const Reference &ref, Record *rec) {
+	// A shot cut at max_time: an engine stepping past it may report events the reference never
+	// reached. A shot run to rest keeps all (an engine may stop later than the reference).
+	const std::vector<Event> &reference = ref.events;
 	std::vector<Event> engine;
 	for (const Event &e : engine_all)
-		if (e.t <= end_time + 1e-9)
+		if (ref.at_rest || e.t <= ref.end_time + 1e-9)
 			engine.push_back(e);
 
 	std::set<CollisionKey> ref_keys, eng_keys;

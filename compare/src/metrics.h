@@ -81,8 +81,7 @@ private:
 double max_position_error(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference);
 
 /// Fills the event fields of a record (times, missed and phantom collisions).
-void compare_events(const std::vector<Event> &engine, const std::vector<Event> &reference, double end_time,
-                    Record *record);
+void compare_events(const std::vector<Event> &engine, const Reference &reference, Record *record);
 
 /// Balls pocketed (or off the table) in one state but not in the other.
 int pocket_mismatches(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference);

@@ -192,7 +192,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 		rec.energy_error = errors.energy_error;
 		rec.max_penetration = std::max({0.0, stats.max_penetration, errors.penetration});
 		rec.pocket_mismatches = pocket_mismatches(final_balls, ref_final);
-		compare_events(run.events(), ref.events, ref.end_time, &rec);
+		compare_events(run.events(), ref, &rec);
 		if (errors.missing_balls)
 			rec.error = "the engine did not report every ball";
 	}
