@@ -16,3 +16,8 @@ build/release/tools/pool-rack 8ball -o out/break_scenario.json
 build/release/tools/pool-sim out/break_scenario.json --sample 0.01 --summary -o out/break.json
 .venv/bin/python tools/pool-plot out/break.json -o out/break.png --title "8-ball break"
 echo "scenario out/break_scenario.json, result out/break.json, picture out/break.png"
+
+# --- engine comparison (compare/): libpool against ODE and Bullet on the default scenarios ---
+echo "== Engine comparison: pool-compare (default scenarios, a few minutes) =="
+build/release/compare/pool-compare --out out/compare
+echo "table, plots and report: out/compare/report.md (data: out/compare/results.json, results.csv)"
