@@ -37,34 +37,68 @@ typedef struct pool_q_val {
 	int sign;  // sign of p(x); 0 when it is zero within rounding (critical points only)
 } pool_q_val;
 
-// p(x) and its first two derivatives by Horner's scheme (b[k] is the coefficient of x^k).
-static pool_q_val pool_q_eval(const double *b, int n, double x) {
-	double f = b[n], d1 = 0.0, d2 = 0.0;
-	for (int k = n - 1; k >= 0; --k) {
-		d2 = d2 * x + d1;
-		d1 = d1 * x + f;
-		f = f * x + b[k];
+// A polynomial being solved: b[k] is the coefficient of x^k, b[n] != 0. With safe set (extreme
+// coefficient ranges), p is evaluated at |x| > 1 through the reversed polynomial q(z) = x^-n p(x),
+// z = 1/x, and every value (p, p', p'', the error scale) comes out divided by |x|^n: no overflow,
+// and the ratios the iteration uses (p/p', Halley's step, |p| against its error scale) unchanged.
+typedef struct pool_q_p {
+	const double *b;
+	int n;
+	bool safe;
+} pool_q_p;
+
+// p(x), p'(x), p''(x) (all divided by |x|^n when p->safe and |x| > 1).
+static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, double *d2) {
+	const double *b = p->b;
+	const int n = p->n;
+	double f, d = 0.0, e = 0.0;
+	if (!p->safe || fabs(x) <= 1.0) {
+		f = b[n];
+		for (int k = n - 1; k >= 0; --k) {
+			e = e * x + d;
+			d = d * x + f;
+			f = f * x + b[k];
+		}
+		*d1 = d;
+		*d2 = 2.0 * e;
+		return f;
 	}
-	pool_q_val v = {x, f, d1, 2.0 * d2, (f > 0.0) - (f < 0.0)};
+	double z = 1.0 / x, q = b[0];
+	for (int k = 1; k <= n; ++k) {
+		e = e * z + d;
+		d = d * z + q;
+		q = q * z + b[k];
+	}
+	// p = x^n q(z), p' = x^(n-1) (n q - z q'), p'' = x^(n-2) (n(n-1) q - 2(n-1) z q' + z^2 q'').
+	double sg = (n % 2 == 0 || x > 0.0) ? 1.0 : -1.0, nn = (double)n;
+	*d1 = sg * z * (nn * q - z * d);
+	*d2 = sg * z * z * (nn * (nn - 1.0) * q - 2.0 * (nn - 1.0) * z * d + z * z * 2.0 * e);
+	return sg * q;
+}
+
+static pool_q_val pool_q_eval(const pool_q_p *p, double x) {
+	double d1, d2;
+	double f = pool_q_eval_all(p, x, &d1, &d2);
+	pool_q_val v = {x, f, d1, d2, (f > 0.0) - (f < 0.0)};
 	return v;
 }
 
-// p(x) and p'(x) only (the Newton iteration).
-static inline double pool_q_eval_fd(const double *b, int n, double x, double *d1) {
-	double f = b[n], d = 0.0;
-	for (int k = n - 1; k >= 0; --k) {
-		d = d * x + f;
-		f = f * x + b[k];
+// Sum of |b_k| |x|^k: the scale of the rounding error of p(x) (same scaling as pool_q_eval_all).
+static double pool_q_abs_sum(const pool_q_p *p, double x) {
+	const double *b = p->b;
+	const int n = p->n;
+	double s;
+	if (!p->safe || fabs(x) <= 1.0) {
+		double ax = fabs(x);
+		s = fabs(b[n]);
+		for (int k = n - 1; k >= 0; --k)
+			s = s * ax + fabs(b[k]);
+	} else {
+		double az = fabs(1.0 / x);
+		s = fabs(b[0]);
+		for (int k = 1; k <= n; ++k)
+			s = s * az + fabs(b[k]);
 	}
-	*d1 = d;
-	return f;
-}
-
-// Sum of |b_k| |x|^k: the scale of the rounding error of p(x).
-static double pool_q_abs_sum(const double *b, int n, double x) {
-	double ax = fabs(x), s = fabs(b[n]);
-	for (int k = n - 1; k >= 0; --k)
-		s = s * ax + fabs(b[k]);
 	return s;
 }
 
@@ -73,6 +107,12 @@ static double pool_q_abs_sum(const double *b, int n, double x) {
 static double pool_q_split(double a, double c) {
 	if (a < 0.0 && c > 0.0)
 		return 0.0;
+	// One end at 0: the geometric middle with the smallest normal number, so that about eleven
+	// splits find the root's exponent.
+	if (a == 0.0 && c > 0x1p-1020)
+		return sqrt(c) * 0x1p-511;
+	if (c == 0.0 && a < -0x1p-1020)
+		return -sqrt(-a) * 0x1p-511;
 	if (a >= 0.0 && c > 4.0 * a && a > 0.0)
 		return sqrt(a) * sqrt(c);
 	if (c <= 0.0 && a < 4.0 * c && c < 0.0)
@@ -82,7 +122,8 @@ static double pool_q_split(double a, double c) {
 
 // Distance from point v towards the root of p in direction dir, from the local Taylor terms
 // (each one alone would reach the root at about this distance; the smallest is the best guess).
-static double pool_q_guess_step(const double *b, int n, const pool_q_val *v, int dir) {
+static double pool_q_guess_step(const pool_q_p *p, const pool_q_val *v, int dir) {
+	const int n = p->n;
 	double af = fabs(v->f), t = INFINITY;
 	// Slope term, when moving in dir brings p towards 0.
 	if (v->d1 != 0.0 && (v->d1 * dir > 0.0) == (v->f < 0.0))
@@ -92,10 +133,11 @@ static double pool_q_guess_step(const double *b, int n, const pool_q_val *v, int
 		if (t2 < t)
 			t = t2;
 	}
-	double lead = fabs(b[n]);
+	double lead = fabs(p->b[n]);
+	bool rescaled = p->safe && fabs(v->x) > 1.0; // |f| is divided by |x|^n: no leading-term bound
 	double tn_pow = t * t;
 	tn_pow = n == 4 ? tn_pow * tn_pow : n == 3 ? tn_pow * t : tn_pow;
-	if (!(t < INFINITY) || lead * tn_pow > af) {
+	if (!rescaled && (!(t < INFINITY) || lead * tn_pow > af)) {
 		// The leading term alone reaches |f| sooner: its distance bounds the root's distance.
 		double tn = n == 4 ? sqrt(sqrt(af / lead)) : n == 3 ? cbrt(af / lead) : sqrt(af / lead);
 		if (tn < t)
@@ -106,38 +148,25 @@ static double pool_q_guess_step(const double *b, int n, const pool_q_val *v, int
 	return t;
 }
 
-// p, p', p'' at x (Halley's iteration).
-static inline double pool_q_eval_f2(const double *b, int n, double x, double *d1, double *d2) {
-	double f = b[n], d = 0.0, e = 0.0;
-	for (int k = n - 1; k >= 0; --k) {
-		e = e * x + d;
-		d = d * x + f;
-		f = f * x + b[k];
-	}
-	*d1 = d;
-	*d2 = 2.0 * e;
-	return f;
-}
-
 // The single root of p between a and c (p monotone there, signs at the ends opposite and non-zero).
 // a or c may be infinite. Halley's iteration (cubic convergence) safeguarded by the bracket, which
 // every evaluation shrinks; stops when the step is below stop_rel |x| (the next error is then of
 // order stop_rel^3, far below rounding for stop_rel <= 1e-8). Returns NAN when no finite bracket
 // could be built (overflow).
-static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val c, double stop_rel) {
+static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, double stop_rel) {
 	const int sa = a.sign;
 	double x;
 	if (!isfinite(a.x) || !isfinite(c.x)) {
 		// Expand from the finite end until the sign changes: a finite bracket.
 		pool_q_val e = isfinite(a.x) ? a : c;
 		int dir = isfinite(a.x) ? 1 : -1;
-		double t = pool_q_guess_step(b, n, &e, dir);
+		double t = pool_q_guess_step(p, &e, dir);
 		for (int i = 0;; ++i) {
 			x = e.x + dir * t;
 			if (!isfinite(x) || i > 2100)
 				return NAN;
-			double d;
-			double f = pool_q_eval_fd(b, n, x, &d);
+			double d, d2;
+			double f = pool_q_eval_all(p, x, &d, &d2);
 			int s = (f > 0.0) - (f < 0.0);
 			if (s == 0)
 				return x;
@@ -160,22 +189,25 @@ static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val 
 		// Start from the end where |p| is smaller (the root is nearer to it), Taylor guess.
 		const pool_q_val *e = fabs(a.f) <= fabs(c.f) ? &a : &c;
 		int dir = e == &a ? 1 : -1;
-		x = e->x + dir * pool_q_guess_step(b, n, e, dir);
+		x = e->x + dir * pool_q_guess_step(p, e, dir);
 		if (!(x > a.x && x < c.x))
 			x = pool_q_split(a.x, c.x);
 	}
 	double lo = a.x, hi = c.x;
 	for (int it = 0; it < POOL_Q_MAX_ITER; ++it) {
 		double d, d2;
-		double f = pool_q_eval_f2(b, n, x, &d, &d2);
+		double f = pool_q_eval_all(p, x, &d, &d2);
 		if (f == 0.0)
 			return x;
 		if ((f > 0.0) - (f < 0.0) == sa)
 			lo = x;
 		else
 			hi = x;
-		double den = d * d - 0.5 * f * d2;
-		double dx = den > 0.0 ? f * d / den : f / d;
+		// Halley's step f d / (d^2 - f d2 / 2), written with ratios (no products that could
+		// underflow with extreme scaling).
+		double newton = f / d;
+		double den = 1.0 - 0.5 * newton * (d2 / d);
+		double dx = den > 0.5 ? newton / den : newton;
 		double xn = x - dx;
 		double adx = fabs(dx);
 		if (adx <= stop_rel * fabs(x))
@@ -193,10 +225,20 @@ static double pool_q_bracketed(const double *b, int n, pool_q_val a, pool_q_val 
 
 // Roots of a degree-n polynomial b (b[n] != 0, coefficient of x^k in b[k]) in [lo, hi], ascending,
 // by multiplicity, at most n. lo/hi may be infinite. With first_only, stops at the first root.
-static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only, double stop_rel);
+static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out, bool first_only, double stop_rel);
 
-static int pool_q_quadratic(const double *b, double lo, double hi, double *out) {
+static int pool_q_quadratic(const pool_q_p *p, double lo, double hi, double *out) {
+	const double *b = p->b;
 	double b0 = b[0], b1 = b[1], b2 = b[2];
+	if (p->safe) {
+		// Largest coefficient to about 1 (a power of two: exact), so b1^2 cannot overflow.
+		double m = fmax(fabs(b0), fmax(fabs(b1), fabs(b2)));
+		int e;
+		frexp(m, &e);
+		b0 = ldexp(b0, -e);
+		b1 = ldexp(b1, -e);
+		b2 = ldexp(b2, -e);
+	}
 	double disc = b1 * b1 - 4.0 * b2 * b0;
 	double r[2];
 	if (disc >= 0.0) {
@@ -223,7 +265,9 @@ static int pool_q_quadratic(const double *b, double lo, double hi, double *out) 
 	return m;
 }
 
-static int pool_q_roots_in(const double *b, int n, double lo, double hi, double *out, bool first_only, double stop_rel) {
+static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out, bool first_only, double stop_rel) {
+	const double *b = p->b;
+	const int n = p->n;
 	if (n <= 0)
 		return 0;
 	if (n == 1) {
@@ -235,14 +279,15 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 		return 0;
 	}
 	if (n == 2)
-		return pool_q_quadratic(b, lo, hi, out);
+		return pool_q_quadratic(p, lo, hi, out);
 
 	// Critical points in the window, with multiplicity.
 	double d[4];
 	for (int k = 0; k < n; ++k)
 		d[k] = (double)(k + 1) * b[k + 1];
 	double crit[3];
-	int ncrit = pool_q_roots_in(d, n - 1, lo, hi, crit, false, POOL_Q_STOP_CRIT);
+	pool_q_p dp = {d, n - 1, p->safe};
+	int ncrit = pool_q_roots_in(&dp, lo, hi, crit, false, POOL_Q_STOP_CRIT);
 
 	int count = 0;
 	const int cap = first_only ? 1 : n;
@@ -250,13 +295,13 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 		// Monotone on the whole line (odd degree): split at the inflection point, whose value
 		// tells which side the single root is on.
 		double xi = -b[n - 1] / ((double)n * b[n]);
-		pool_q_val v = pool_q_eval(b, n, xi);
+		pool_q_val v = pool_q_eval(p, xi);
 		if (v.sign == 0) {
 			out[0] = xi + 0.0;
 			return 1;
 		}
 		pool_q_val inf = {v.sign == (b[n] > 0.0 ? 1 : -1) ? -INFINITY : INFINITY, NAN, NAN, NAN, -v.sign};
-		double r = inf.x < 0.0 ? pool_q_bracketed(b, n, inf, v, stop_rel) : pool_q_bracketed(b, n, v, inf, stop_rel);
+		double r = inf.x < 0.0 ? pool_q_bracketed(p, inf, v, stop_rel) : pool_q_bracketed(p, v, inf, stop_rel);
 		if (r == r) {
 			out[0] = r;
 			return 1;
@@ -270,7 +315,7 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 		prev.f = prev.d1 = prev.d2 = NAN;
 		prev.sign = ((b[n] > 0.0) == (n % 2 == 0)) ? 1 : -1;
 	} else {
-		prev = pool_q_eval(b, n, lo);
+		prev = pool_q_eval(p, lo);
 		if (prev.sign == 0) {
 			out[count++] = lo;
 			if (first_only)
@@ -285,11 +330,11 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 		i += mult;
 		if (!(cx > prev.x))
 			continue; // coincides with the window's left end, already evaluated
-		pool_q_val v = pool_q_eval(b, n, cx);
-		if (fabs(v.f) <= POOL_Q_TOUCH * POOL_Q_U * pool_q_abs_sum(b, n, cx))
+		pool_q_val v = pool_q_eval(p, cx);
+		if (fabs(v.f) <= POOL_Q_TOUCH * POOL_Q_U * pool_q_abs_sum(p, cx))
 			v.sign = 0;
 		if (prev.sign != 0 && v.sign != 0 && prev.sign != v.sign) {
-			double r = pool_q_bracketed(b, n, prev, v, stop_rel);
+			double r = pool_q_bracketed(p, prev, v, stop_rel);
 			if (r == r && count < cap) {
 				out[count++] = r;
 				if (first_only)
@@ -313,10 +358,10 @@ static int pool_q_roots_in(const double *b, int n, double lo, double hi, double 
 	} else {
 		if (!(hi > prev.x))
 			return count;
-		last = pool_q_eval(b, n, hi);
+		last = pool_q_eval(p, hi);
 	}
 	if (prev.sign != 0 && last.sign != 0 && prev.sign != last.sign) {
-		double r = pool_q_bracketed(b, n, prev, last, stop_rel);
+		double r = pool_q_bracketed(p, prev, last, stop_rel);
 		if (r == r && count < cap)
 			out[count++] = r;
 	} else if (last.sign == 0 && count < cap) {
@@ -331,6 +376,7 @@ typedef struct pool_q_poly {
 	int n;
 	int zeros; // multiplicity of the root x = 0
 	int scale;
+	bool safe; // extreme coefficients: evaluate through the reversed polynomial at |x| > 1
 	double b[5];
 } pool_q_poly;
 
@@ -348,6 +394,7 @@ static bool pool_q_prepare(const double c[5], pool_q_poly *p) {
 	p->n = 0;
 	p->zeros = 0;
 	p->scale = 0;
+	p->safe = false;
 	if (n <= 0)
 		return true; // zero polynomial or a non-zero constant: no roots
 	int z = 0;
@@ -385,6 +432,7 @@ static bool pool_q_prepare(const double c[5], pool_q_poly *p) {
 	for (int k = 0; k <= n; ++k)
 		p->b[k] = sgn * ldexp(a[k + z], k * e - emax);
 	p->scale = e;
+	p->safe = true;
 	while (p->n > 0 && p->b[p->n] == 0.0)
 		--p->n; // the leading term underflowed: its roots are beyond the double range
 	return true;
@@ -400,7 +448,8 @@ int pool_quartic_real_roots(const double c[5], double roots[4]) {
 	if (!c || !roots || !pool_q_prepare(c, &p))
 		return 0;
 	double y[4];
-	int m = pool_q_roots_in(p.b, p.n, -INFINITY, INFINITY, y, false, POOL_Q_STOP_ROOT);
+	pool_q_p pp = {p.b, p.n, p.safe};
+	int m = pool_q_roots_in(&pp, -INFINITY, INFINITY, y, false, POOL_Q_STOP_ROOT);
 	// Merge the exact zero roots in ascending order; drop roots that overflow when unscaled.
 	int count = 0, zeros = p.zeros;
 	for (int i = 0; i < m; ++i) {
@@ -430,7 +479,8 @@ int pool_quartic_smallest_root_in(const double c[5], double lo, double hi, doubl
 	// Only roots below 0 can beat an exact zero root.
 	if (zero_in)
 		yhi = fmin(yhi, 0.0);
-	int m = pool_q_roots_in(p.b, p.n, ylo, yhi, y, true, POOL_Q_STOP_ROOT);
+	pool_q_p pp = {p.b, p.n, p.safe};
+	int m = pool_q_roots_in(&pp, ylo, yhi, y, true, POOL_Q_STOP_ROOT);
 	if (m > 0) {
 		double x = pool_q_unscale(y[0], p.scale);
 		if (x >= lo && x <= hi && !(zero_in && x > 0.0)) {

@@ -1,0 +1,663 @@
+// Unit tests of libpool's quartic solver: published hard cases, the billiards degenerate cases,
+// random polynomials with known roots, and pool_quartic_smallest_root_in.
+//
+// Accuracy criterion (QUARTIC.md): a root r is right when |x - r| <= 1e3 kappa u |r|, with
+// u = 2^-53 and kappa = sum |a_i| |r|^i / (|r| |p'(r)|), the reference being the roots of the
+// rounded (double) coefficients. Ill-conditioned cases (kappa u > 1e-9, or a complex pair with
+// |Im| / |z| < 1e-3) only have to give a sane answer; they are reported, not judged.
+#include <float.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include <pool/quartic.h>
+
+static const double tq_u = 0x1p-53;
+
+// --- A tiny JSON reader for tests/data/quartic_public_cases.json (no JSON library in libpool) ---
+
+typedef struct tq_case {
+	char id[64];
+	double coeffs[5];
+	int n_real;
+	double real[4];
+	double cond[4]; // INFINITY where the file has null (a multiple root)
+	int n_complex;
+	double complex_roots[4][2];
+	bool has_smallest;
+	double smallest;
+} tq_case;
+
+typedef struct tq_json {
+	const char *p;
+	bool err;
+} tq_json;
+
+static void tq_ws(tq_json *j) {
+	while (*j->p == ' ' || *j->p == '\n' || *j->p == '\r' || *j->p == '\t')
+		++j->p;
+}
+
+static bool tq_eat(tq_json *j, char c) {
+	tq_ws(j);
+	if (*j->p == c) {
+		++j->p;
+		return true;
+	}
+	return false;
+}
+
+static void tq_expect(tq_json *j, char c) {
+	if (!tq_eat(j, c))
+		j->err = true;
+}
+
+static void tq_string(tq_json *j, char *out, size_t cap) {
+	size_t n = 0;
+	tq_expect(j, '"');
+	while (!j->err && *j->p && *j->p != '"') {
+		if (*j->p == '\\' && j->p[1])
+			++j->p;
+		if (out && n + 1 < cap)
+			out[n++] = *j->p;
+		++j->p;
+	}
+	if (out)
+		out[n] = '\0';
+	if (*j->p != '"')
+		j->err = true;
+	else
+		++j->p;
+}
+
+// A number, or null (returns false, value untouched).
+static bool tq_number(tq_json *j, double *v) {
+	tq_ws(j);
+	if (strncmp(j->p, "null", 4) == 0) {
+		j->p += 4;
+		return false;
+	}
+	char *end;
+	*v = strtod(j->p, &end);
+	if (end == j->p)
+		j->err = true;
+	j->p = end;
+	return true;
+}
+
+static void tq_skip_value(tq_json *j) {
+	tq_ws(j);
+	char c = *j->p;
+	if (c == '"') {
+		tq_string(j, NULL, 0);
+	} else if (c == '[' || c == '{') {
+		char close = c == '[' ? ']' : '}';
+		++j->p;
+		if (tq_eat(j, close))
+			return;
+		do {
+			if (c == '{') {
+				tq_string(j, NULL, 0);
+				tq_expect(j, ':');
+			}
+			tq_skip_value(j);
+		} while (!j->err && tq_eat(j, ','));
+		tq_expect(j, close);
+	} else if (strncmp(j->p, "true", 4) == 0 || strncmp(j->p, "null", 4) == 0) {
+		j->p += 4;
+	} else if (strncmp(j->p, "false", 5) == 0) {
+		j->p += 5;
+	} else {
+		double v;
+		tq_number(j, &v);
+	}
+}
+
+// An array of up to cap numbers (null -> INFINITY); returns how many.
+static int tq_numbers(tq_json *j, double *out, int cap) {
+	int n = 0;
+	tq_expect(j, '[');
+	if (tq_eat(j, ']'))
+		return 0;
+	do {
+		double v = INFINITY;
+		tq_number(j, &v);
+		if (n < cap)
+			out[n] = v;
+		++n;
+	} while (!j->err && tq_eat(j, ','));
+	tq_expect(j, ']');
+	if (n > cap)
+		j->err = true;
+	return n;
+}
+
+static void tq_parse_case(tq_json *j, tq_case *c) {
+	memset(c, 0, sizeof *c);
+	tq_expect(j, '{');
+	do {
+		char key[64];
+		tq_string(j, key, sizeof key);
+		tq_expect(j, ':');
+		if (strcmp(key, "id") == 0) {
+			tq_string(j, c->id, sizeof c->id);
+		} else if (strcmp(key, "coeffs") == 0) {
+			if (tq_numbers(j, c->coeffs, 5) != 5)
+				j->err = true;
+		} else if (strcmp(key, "real_roots") == 0) {
+			c->n_real = tq_numbers(j, c->real, 4);
+		} else if (strcmp(key, "real_root_cond") == 0) {
+			tq_numbers(j, c->cond, 4);
+		} else if (strcmp(key, "complex_roots") == 0) {
+			tq_expect(j, '[');
+			if (!tq_eat(j, ']')) {
+				do {
+					double z[2];
+					if (tq_numbers(j, z, 2) != 2 || c->n_complex >= 4)
+						j->err = true;
+					else {
+						c->complex_roots[c->n_complex][0] = z[0];
+						c->complex_roots[c->n_complex][1] = z[1];
+						++c->n_complex;
+					}
+				} while (!j->err && tq_eat(j, ','));
+				tq_expect(j, ']');
+			}
+		} else if (strcmp(key, "smallest_nonnegative_root") == 0) {
+			c->has_smallest = tq_number(j, &c->smallest);
+		} else {
+			tq_skip_value(j);
+		}
+	} while (!j->err && tq_eat(j, ','));
+	tq_expect(j, '}');
+}
+
+static int tq_load_cases(tq_case *cases, int cap) {
+	const char *path = POOL_TEST_DATA_DIR "/quartic_public_cases.json";
+	FILE *f = fopen(path, "rb");
+	assert_non_null(f);
+	fseek(f, 0, SEEK_END);
+	long size = ftell(f);
+	fseek(f, 0, SEEK_SET);
+	char *text = malloc((size_t)size + 1);
+	assert_non_null(text);
+	assert_int_equal(fread(text, 1, (size_t)size, f), (size_t)size);
+	text[size] = '\0';
+	fclose(f);
+	tq_json j = {text, false};
+	int n = 0;
+	tq_expect(&j, '[');
+	do {
+		assert_true(n < cap);
+		tq_parse_case(&j, &cases[n++]);
+	} while (!j.err && tq_eat(&j, ','));
+	tq_expect(&j, ']');
+	assert_false(j.err);
+	free(text);
+	return n;
+}
+
+// --- Helpers ---
+
+// Condition number of root r of c (a4 first), evaluated in long double.
+static double tq_kappa(const double c[5], long double r, long double *abs_err_per_u) {
+	long double s = 0.0L, d = 0.0L, ar = fabsl(r);
+	for (int i = 0; i < 5; ++i) {
+		int k = 4 - i; // power of c[i]
+		s += fabsl(c[i]) * powl(ar, k);
+		if (k > 0)
+			d += k * (long double)c[i] * powl(r, k - 1);
+	}
+	if (abs_err_per_u)
+		*abs_err_per_u = s / fabsl(d);
+	return r == 0.0L ? 0.0 : (double)(s / (ar * fabsl(d)));
+}
+
+static bool tq_close(double x, double r, double kappa) {
+	return fabs(x - r) <= 1e3 * kappa * tq_u * fabs(r) + DBL_TRUE_MIN;
+}
+
+static int tq_solve(double a4, double a3, double a2, double a1, double a0, double roots[4]) {
+	const double c[5] = {a4, a3, a2, a1, a0};
+	return pool_quartic_real_roots(c, roots);
+}
+
+// --- Published hard cases ---
+
+static void test_public_cases(void **state) {
+	(void)state;
+	tq_case cases[64];
+	int n = tq_load_cases(cases, 64);
+	assert_true(n >= 30);
+	int well = 0, ill = 0;
+	for (int i = 0; i < n; ++i) {
+		const tq_case *tc = &cases[i];
+		bool is_ill = false;
+		for (int k = 0; k < tc->n_real; ++k)
+			if (!(tc->cond[k] * tq_u <= 1e-9))
+				is_ill = true;
+		for (int k = 0; k < tc->n_complex; ++k)
+			if (fabs(tc->complex_roots[k][1]) < 1e-3 * hypot(tc->complex_roots[k][0], tc->complex_roots[k][1]))
+				is_ill = true;
+		double roots[4] = {NAN, NAN, NAN, NAN};
+		int m = pool_quartic_real_roots(tc->coeffs, roots);
+		assert_true(m >= 0 && m <= 4);
+		for (int k = 1; k < m; ++k)
+			assert_true(roots[k - 1] <= roots[k]);
+		double first;
+		int has_first = pool_quartic_smallest_root_in(tc->coeffs, 0.0, INFINITY, &first) == 0;
+		if (is_ill) {
+			++ill;
+			print_message("  ill-conditioned %-14s expected %d real roots, got %d\n", tc->id, tc->n_real, m);
+			continue;
+		}
+		++well;
+		if (m != tc->n_real)
+			fail_msg("%s: %d real roots, expected %d", tc->id, m, tc->n_real);
+		for (int k = 0; k < m; ++k)
+			if (!tq_close(roots[k], tc->real[k], tc->cond[k]))
+				fail_msg("%s: root %d is %.17g, expected %.17g (kappa %g)", tc->id, k, roots[k], tc->real[k], tc->cond[k]);
+		assert_int_equal(has_first, tc->has_smallest);
+		if (has_first) {
+			int k = 0;
+			while (tc->real[k] != tc->smallest)
+				++k;
+			if (!tq_close(first, tc->smallest, tc->cond[k]))
+				fail_msg("%s: smallest non-negative root %.17g, expected %.17g", tc->id, first, tc->smallest);
+		}
+	}
+	print_message("  public cases: %d well-conditioned all right, %d ill-conditioned reported\n", well, ill);
+	assert_true(well >= 15);
+}
+
+// --- Billiards degenerate cases ---
+
+static void test_equal_accelerations(void **state) {
+	(void)state;
+	double r[4];
+	// a4 = a3 = 0: the quadratic (x - 1)(x - 2).
+	assert_int_equal(tq_solve(0.0, 0.0, 1.0, -3.0, 2.0, r), 2);
+	assert_true(fabs(r[0] - 1.0) < 1e-15 && fabs(r[1] - 2.0) < 1e-15);
+	// Two balls rolling the same way, 0.5 m apart along x, relative speed 2 m/s, lateral offset
+	// 0: A = 0, so |P0 + V0 t|^2 = 4R^2 is a quadratic; first contact when the gap closes.
+	const double R = 0.028575;
+	double px = -0.5, vx = 2.0;
+	double c[5] = {0.0, 0.0, vx * vx, 2.0 * vx * px, px * px - 4.0 * R * R};
+	int n = pool_quartic_real_roots(c, r);
+	assert_int_equal(n, 2);
+	double t_hit = (0.5 - 2.0 * R) / 2.0, t_leave = (0.5 + 2.0 * R) / 2.0;
+	assert_true(fabs(r[0] - t_hit) < 1e-15 && fabs(r[1] - t_leave) < 1e-15);
+	double t;
+	assert_int_equal(pool_quartic_smallest_root_in(c, 0.0, 10.0, &t), 0);
+	assert_true(fabs(t - t_hit) < 1e-15);
+	// Moving apart: no root in the future.
+	c[3] = -c[3];
+	assert_true(pool_quartic_smallest_root_in(c, 0.0, 10.0, &t) < 0);
+	// Equal velocities too: a constant; no roots, never four zeros.
+	const double still[5] = {0.0, 0.0, 0.0, 0.0, 0.25};
+	assert_int_equal(pool_quartic_real_roots(still, r), 0);
+	assert_true(pool_quartic_smallest_root_in(still, 0.0, 10.0, &t) < 0);
+}
+
+static void test_tiny_leading_coefficient(void **state) {
+	(void)state;
+	// (x - 1)(x - 2)(x - 3) plus 1e-14 x^4: the cubic's roots barely move, and a fourth root
+	// near -1e14 appears; that root is real and reported, it is outside any time window.
+	const double c[5] = {1e-14, 1.0, -6.0, 11.0, -6.0};
+	double r[4];
+	int n = pool_quartic_real_roots(c, r);
+	assert_int_equal(n, 4);
+	assert_true(r[0] < -9e13 && r[0] > -1.1e14);
+	for (int k = 1; k < 4; ++k) {
+		// Reference: Newton on the exact coefficients in long double from the cubic's root.
+		long double x = k;
+		for (int it = 0; it < 20; ++it) {
+			long double f = 0.0L, d = 0.0L;
+			for (int i = 0; i < 5; ++i) {
+				d = d * x + f;
+				f = f * x + c[i];
+			}
+			x -= f / d;
+		}
+		double kappa = tq_kappa(c, x, NULL);
+		assert_true(tq_close(r[k], (double)x, kappa));
+	}
+	double t;
+	assert_int_equal(pool_quartic_smallest_root_in(c, 0.0, 10.0, &t), 0);
+	assert_true(fabs(t - 1.0) < 1e-13);
+	// Even tinier (the ball-pair case of equal accelerations up to rounding): still fine.
+	const double c2[5] = {4.8e-35, 2.7e-17, 5.5577796127467147, 2.1034568596630869, -0.19589780863296691};
+	n = pool_quartic_real_roots(c2, r);
+	assert_true(n >= 2);
+	assert_int_equal(pool_quartic_smallest_root_in(c2, 0.0, 10.0, &t), 0);
+	double q = (-c2[3] + sqrt(c2[3] * c2[3] - 4.0 * c2[2] * c2[4])) / (2.0 * c2[2]);
+	assert_true(fabs(t - q) < 1e-14);
+}
+
+static void test_zero_constant_term(void **state) {
+	(void)state;
+	double r[4], t;
+	// x (x + 2)(x + 1)(x - 1): the root 0 must be exactly 0.
+	assert_int_equal(tq_solve(1.0, 2.0, -1.0, -2.0, 0.0, r), 4);
+	assert_true(r[2] == 0.0 && !signbit(r[2]));
+	assert_true(fabs(r[0] + 2.0) < 1e-15 && fabs(r[1] + 1.0) < 1e-15 && fabs(r[3] - 1.0) < 1e-15);
+	const double c[5] = {1.0, 2.0, -1.0, -2.0, 0.0};
+	assert_int_equal(pool_quartic_smallest_root_in(c, 0.0, 5.0, &t), 0);
+	assert_true(t == 0.0);
+	// x^2 (x - 1)(x - 2): a double root at exactly 0.
+	assert_int_equal(tq_solve(1.0, -3.0, 2.0, 0.0, 0.0, r), 4);
+	assert_true(r[0] == 0.0 && r[1] == 0.0);
+	// Touching balls moving apart: a0 = 0, a1 > 0; the root at now is 0, not -1e-17.
+	assert_int_equal(tq_solve(0.0, 0.0, 4.0, 0.3, 0.0, r), 2);
+	assert_true(r[1] == 0.0);
+	// a0 = +-1e-300: the root near 0 is -a0 / a1 (to first order, exactly here), not 0, not lost.
+	for (int s = -1; s <= 1; s += 2) {
+		double a0 = s * 1e-300;
+		int n = tq_solve(1.0, 2.0, -1.0, -2.0, a0, r);
+		assert_int_equal(n, 4);
+		double expect = a0 / 2.0;
+		assert_true(fabs(r[2] - expect) <= 1e-15 * fabs(expect));
+		const double cs[5] = {1.0, 2.0, -1.0, -2.0, a0};
+		assert_int_equal(pool_quartic_smallest_root_in(cs, 0.0, 5.0, &t), 0);
+		if (s > 0)
+			assert_true(fabs(t - expect) <= 1e-15 * expect);
+		else
+			assert_true(fabs(t - 1.0) < 1e-15);
+	}
+}
+
+static void test_near_double_roots(void **state) {
+	(void)state;
+	double r[4], t;
+	// (x - 0.3)^2 (x + 1)(x - 2) with rounded coefficients: the pair at 0.3 may come out as two
+	// close reals or a complex pair with a tiny imaginary part; either way a root pair at 0.3.
+	long double rr = 0.3L;
+	long double p2 = 1.0L, p1 = -2.0L * rr, p0 = rr * rr;      // (x - r)^2
+	long double q2 = 1.0L, q1 = -1.0L, q0 = -2.0L;             // (x + 1)(x - 2)
+	double c[5] = {(double)(p2 * q2), (double)(p2 * q1 + p1 * q2), (double)(p2 * q0 + p1 * q1 + p0 * q2),
+	               (double)(p1 * q0 + p0 * q1), (double)(p0 * q0)};
+	int n = pool_quartic_real_roots(c, r);
+	assert_int_equal(n, 4);
+	assert_true(fabs(r[0] + 1.0) < 1e-14 && fabs(r[3] - 2.0) < 1e-14);
+	assert_true(fabs(r[1] - 0.3) < 1e-7 && fabs(r[2] - 0.3) < 1e-7);
+	// Grazing contact: a ball passes another at exactly 2R centre distance while decelerating,
+	// x(t) = -1 + 2 t - 0.1 t^2 along the line, offset 2R: |p|^2 - 4R^2 = x(t)^2, a double root.
+	const double R = 0.028575, x0 = -1.0, v = 2.0, a = -0.1, y0 = 2.0 * R;
+	double g[5] = {a * a, 2.0 * a * v, v * v + 2.0 * a * x0, 2.0 * v * x0, x0 * x0 + y0 * y0 - 4.0 * R * R};
+	double t1 = (-v + sqrt(v * v - 4.0 * a * x0)) / (2.0 * a);
+	n = pool_quartic_real_roots(g, r);
+	assert_true(n >= 2);
+	bool pair = false;
+	for (int k = 0; k + 1 < n; ++k)
+		pair |= fabs(r[k] - t1) < 1e-7 && fabs(r[k + 1] - t1) < 1e-7;
+	assert_true(pair);
+	assert_int_equal(pool_quartic_smallest_root_in(g, 0.0, 10.0, &t), 0);
+	assert_true(fabs(t - t1) < 1e-7);
+	// The same without acceleration (quadratic): (t - 1)^2 with a0 = 1 + 4R^2 - 4R^2 rounded.
+	double h[5] = {0.0, 0.0, 1.0, -2.0, 1.0 + y0 * y0 - 4.0 * R * R};
+	n = pool_quartic_real_roots(h, r);
+	assert_int_equal(n, 2);
+	assert_true(fabs(r[0] - 1.0) < 1e-7 && fabs(r[1] - 1.0) < 1e-7);
+	// Exact multiple roots: (x - 1000)^4 and (x - 1)^2 (x + 1)^2.
+	assert_int_equal(tq_solve(1.0, -4000.0, 6e6, -4e9, 1e12, r), 4);
+	for (int k = 0; k < 4; ++k)
+		assert_true(fabs(r[k] - 1000.0) < 1e-3);
+	assert_int_equal(tq_solve(1.0, 0.0, -2.0, 0.0, 1.0, r), 4);
+	assert_true(r[0] == -1.0 && r[1] == -1.0 && r[2] == 1.0 && r[3] == 1.0);
+}
+
+static void test_lower_degrees(void **state) {
+	(void)state;
+	double r[4];
+	assert_int_equal(tq_solve(0.0, 0.0, 0.0, 2.0, -1.0, r), 1);
+	assert_true(r[0] == 0.5);
+	assert_int_equal(tq_solve(0.0, 0.0, 1.0, 0.0, -4.0, r), 2);
+	assert_true(r[0] == -2.0 && r[1] == 2.0);
+	assert_int_equal(tq_solve(0.0, 0.0, 1.0, 0.0, 4.0, r), 0);
+	assert_int_equal(tq_solve(0.0, 0.0, -1.0, 2.0, -1.0, r), 2); // -(x - 1)^2
+	assert_true(r[0] == 1.0 && r[1] == 1.0);
+	assert_int_equal(tq_solve(0.0, 1.0, -6.0, 11.0, -6.0, r), 3);
+	for (int k = 0; k < 3; ++k)
+		assert_true(fabs(r[k] - (k + 1)) < 1e-14);
+	assert_int_equal(tq_solve(0.0, -2.0, 0.0, 0.0, 16.0, r), 1); // -2 x^3 + 16: x = 2
+	assert_true(fabs(r[0] - 2.0) < 1e-15);
+	assert_int_equal(tq_solve(0.0, 1.0, 0.0, 1.0, 0.0, r), 1); // x (x^2 + 1)
+	assert_true(r[0] == 0.0);
+	assert_int_equal(tq_solve(1.0, 0.0, 0.0, 0.0, 0.0, r), 4); // x^4
+	for (int k = 0; k < 4; ++k)
+		assert_true(r[k] == 0.0);
+	assert_int_equal(tq_solve(1.0, 0.0, 0.0, 0.0, -16.0, r), 2);
+	assert_true(fabs(r[0] + 2.0) < 1e-15 && fabs(r[1] - 2.0) < 1e-15);
+	assert_int_equal(tq_solve(1.0, 0.0, 0.0, 0.0, 16.0, r), 0);
+}
+
+static void test_zero_constant_and_bad_input(void **state) {
+	(void)state;
+	double r[4] = {0}, t = 42.0;
+	assert_int_equal(tq_solve(0.0, 0.0, 0.0, 0.0, 0.0, r), 0);
+	assert_int_equal(tq_solve(0.0, 0.0, 0.0, 0.0, 3.0, r), 0);
+	assert_int_equal(tq_solve(-0.0, 0.0, -0.0, 0.0, -3.0, r), 0);
+	const double bad[] = {NAN, INFINITY, -INFINITY};
+	for (int b = 0; b < 3; ++b)
+		for (int i = 0; i < 5; ++i) {
+			double c[5] = {1.0, -10.0, 35.0, -50.0, 24.0};
+			c[i] = bad[b];
+			assert_int_equal(pool_quartic_real_roots(c, r), 0);
+			assert_true(pool_quartic_smallest_root_in(c, 0.0, 10.0, &t) < 0);
+		}
+	const double ok[5] = {1.0, -10.0, 35.0, -50.0, 24.0};
+	assert_true(pool_quartic_smallest_root_in(ok, NAN, 10.0, &t) < 0);
+	assert_true(pool_quartic_smallest_root_in(ok, 0.0, NAN, &t) < 0);
+	assert_true(pool_quartic_smallest_root_in(ok, 5.0, 0.0, &t) < 0);
+	assert_int_equal(pool_quartic_real_roots(NULL, r), 0);
+	// Extreme but finite magnitudes: no overflow, no crash, roots right.
+	assert_int_equal(tq_solve(1e-300, 1.0, -3.0, 2.0, 0.0, r), 4); // huge root near -1e300
+	assert_true(r[0] < -9e299 && r[1] == 0.0 && fabs(r[2] - 1.0) < 1e-15 && fabs(r[3] - 2.0) < 1e-15);
+	assert_int_equal(tq_solve(1e300, -3e300, 2e300, 0.0, 0.0, r), 4);
+	assert_true(r[0] == 0.0 && r[1] == 0.0 && fabs(r[2] - 1.0) < 1e-15 && fabs(r[3] - 2.0) < 1e-15);
+	assert_int_equal(tq_solve(DBL_MAX, DBL_MAX, -DBL_MAX, -DBL_MAX, 0.0, r), 4);
+	// A subnormal leading coefficient: its root (-2e323) is beyond the double range and dropped.
+	assert_int_equal(tq_solve(DBL_TRUE_MIN, 1.0, -6.0, 11.0, -6.0, r), 3);
+	for (int k = 0; k < 3; ++k)
+		assert_true(fabs(r[k] - (k + 1)) < 1e-14);
+	// Roots 1e-30 .. 1e30 apart (Orellana & De Michele's case 24 scaled up): all four found.
+	assert_int_equal(tq_solve(1e-300, 1.0, -6.0, 11.0, -6.0, r), 4);
+	assert_true(fabs(r[0] / -1e300 - 1.0) < 1e-14);
+	for (int k = 1; k < 4; ++k)
+		assert_true(fabs(r[k] - k) < 1e-14);
+}
+
+// --- Random polynomials with known roots ---
+
+static uint64_t tq_rng = 0x9E3779B97F4A7C15ULL;
+
+static double tq_uniform(void) {
+	tq_rng ^= tq_rng >> 12;
+	tq_rng ^= tq_rng << 25;
+	tq_rng ^= tq_rng >> 27;
+	return (double)((tq_rng * 2685821657736338717ULL) >> 11) * 0x1p-53;
+}
+
+static double tq_log_uniform(double lo_exp10, double hi_exp10) {
+	return pow(10.0, lo_exp10 + (hi_exp10 - lo_exp10) * tq_uniform());
+}
+
+static double tq_signed(double m) {
+	return tq_uniform() < 0.5 ? -m : m;
+}
+
+// Coefficients (a4 first, long double) of lead * prod of factors; each factor is x - r or
+// x^2 - 2 re x + (re^2 + im^2).
+static void tq_expand(long double lead, int n_real, const long double *real, int n_pairs, const long double (*pairs)[2],
+                      long double out[5]) {
+	long double p[5] = {lead, 0, 0, 0, 0}; // p[k]: coefficient of x^(deg - k), built up
+	int deg = 0;
+	for (int i = 0; i < n_real; ++i) {
+		for (int k = deg + 1; k >= 1; --k)
+			p[k] -= real[i] * p[k - 1];
+		++deg;
+	}
+	for (int i = 0; i < n_pairs; ++i) {
+		long double s = 2.0L * pairs[i][0], q = pairs[i][0] * pairs[i][0] + pairs[i][1] * pairs[i][1];
+		for (int k = deg + 2; k >= 1; --k)
+			p[k] = p[k] - s * p[k - 1] + (k >= 2 ? q * p[k - 2] : 0.0L);
+		deg += 2;
+	}
+	for (int k = 0; k < 5; ++k)
+		out[k] = p[k];
+}
+
+static void test_random_products(void **state) {
+	(void)state;
+	int checked = 0, skipped = 0;
+	for (int iter = 0; iter < 6000; ++iter) {
+		int n_pairs = iter % 3; // 4 real roots, 2 real + a complex pair, 2 complex pairs
+		int n_real = 4 - 2 * n_pairs;
+		double scale = tq_log_uniform(-4.0, 4.0); // overall root scale
+		long double real[4], pairs[2][2];
+		for (int i = 0; i < n_real; ++i)
+			real[i] = tq_signed(scale * tq_log_uniform(-3.0, 3.0));
+		bool near_real = false;
+		for (int i = 0; i < n_pairs; ++i) {
+			pairs[i][0] = tq_signed(scale * tq_log_uniform(-3.0, 3.0));
+			pairs[i][1] = scale * tq_log_uniform(-3.0, 3.0);
+			near_real |= fabsl(pairs[i][1]) < 1e-3L * hypotl(pairs[i][0], pairs[i][1]);
+		}
+		long double lead = tq_signed(tq_log_uniform(-6.0, 6.0));
+		long double cl[5];
+		tq_expand(lead, n_real, real, n_pairs, (const long double(*)[2])pairs, cl);
+		double c[5];
+		for (int k = 0; k < 5; ++k)
+			c[k] = (double)cl[k];
+		// Reference: the known real roots polished by Newton on the ROUNDED coefficients.
+		long double ref[4];
+		double kap[4];
+		bool ill = near_real;
+		for (int i = 0; i < n_real; ++i) {
+			long double x = real[i];
+			for (int it = 0; it < 30; ++it) {
+				long double f = 0.0L, d = 0.0L;
+				for (int k = 0; k < 5; ++k) {
+					d = d * x + f;
+					f = f * x + c[k];
+				}
+				if (d == 0.0L)
+					break;
+				x -= f / d;
+			}
+			ref[i] = x;
+			kap[i] = tq_kappa(c, x, NULL);
+			if (!(kap[i] * tq_u <= 1e-9) || fabsl(x - real[i]) > 1e-6L * fabsl(real[i]))
+				ill = true;
+		}
+		// Sort the reference (insertion) with its condition numbers.
+		for (int i = 1; i < n_real; ++i)
+			for (int j = i; j > 0 && ref[j - 1] > ref[j]; --j) {
+				long double tr = ref[j];
+				ref[j] = ref[j - 1];
+				ref[j - 1] = tr;
+				double tk = kap[j];
+				kap[j] = kap[j - 1];
+				kap[j - 1] = tk;
+			}
+		for (int i = 1; i < n_real; ++i)
+			if (ref[i] == ref[i - 1])
+				ill = true; // two starting points polished into one root: clustered
+		double r[4];
+		int n = pool_quartic_real_roots(c, r);
+		assert_true(n >= 0 && n <= 4);
+		if (ill) {
+			++skipped;
+			continue;
+		}
+		++checked;
+		if (n != n_real)
+			fail_msg("case %d: %d real roots, expected %d (coeffs %.17g %.17g %.17g %.17g %.17g)", iter, n, n_real, c[0],
+			         c[1], c[2], c[3], c[4]);
+		for (int i = 0; i < n; ++i)
+			if (!tq_close(r[i], (double)ref[i], kap[i]))
+				fail_msg("case %d: root %.17g, expected %.17Lg (kappa %g)", iter, r[i], ref[i], kap[i]);
+		// The window solver agrees with the full solver on a window whose ends are away from roots.
+		double lo = tq_signed(scale * tq_log_uniform(-3.0, 3.0)), hi = lo + scale * tq_log_uniform(-3.0, 3.0);
+		bool clear = true;
+		for (int i = 0; i < n; ++i)
+			clear &= fabs(r[i] - lo) > 1e-9 * fabs(r[i]) && fabs(r[i] - hi) > 1e-9 * fabs(r[i]);
+		if (!clear)
+			continue;
+		int first = -1;
+		for (int i = 0; i < n && first < 0; ++i)
+			if (r[i] >= lo && r[i] <= hi)
+				first = i;
+		double t;
+		int got = pool_quartic_smallest_root_in(c, lo, hi, &t);
+		if (first < 0) {
+			assert_true(got < 0);
+		} else {
+			assert_int_equal(got, 0);
+			if (!tq_close(t, (double)ref[first], kap[first]))
+				fail_msg("case %d: window [%g, %g] root %.17g, expected %.17Lg", iter, lo, hi, t, ref[first]);
+		}
+	}
+	print_message("  random products: %d well-conditioned checked, %d ill-conditioned skipped\n", checked, skipped);
+	assert_true(checked > 4000);
+}
+
+// --- pool_quartic_smallest_root_in ---
+
+static void test_smallest_root_in(void **state) {
+	(void)state;
+	const double c[5] = {1.0, -10.0, 35.0, -50.0, 24.0}; // roots 1, 2, 3, 4
+	double t = -1.0;
+	assert_int_equal(pool_quartic_smallest_root_in(c, 0.0, 10.0, &t), 0);
+	assert_true(fabs(t - 1.0) < 1e-14);
+	assert_int_equal(pool_quartic_smallest_root_in(c, 1.5, 10.0, &t), 0);
+	assert_true(fabs(t - 2.0) < 1e-14);
+	assert_true(pool_quartic_smallest_root_in(c, 2.5, 2.9, &t) < 0);
+	assert_true(pool_quartic_smallest_root_in(c, 4.5, INFINITY, &t) < 0);
+	assert_true(pool_quartic_smallest_root_in(c, -INFINITY, 0.5, &t) < 0);
+	assert_int_equal(pool_quartic_smallest_root_in(c, -INFINITY, INFINITY, &t), 0);
+	assert_true(fabs(t - 1.0) < 1e-14);
+	// A root exactly at lo, and a window that is a single point.
+	assert_int_equal(pool_quartic_smallest_root_in(c, 3.0, 10.0, &t), 0);
+	assert_true(t == 3.0);
+	assert_int_equal(pool_quartic_smallest_root_in(c, 4.0, 4.0, &t), 0);
+	assert_true(t == 4.0);
+	// A root exactly at hi.
+	assert_int_equal(pool_quartic_smallest_root_in(c, 2.5, 3.0, &t), 0);
+	assert_true(t == 3.0);
+	// No real roots at all.
+	const double none[5] = {1.0, 0.0, 1.0, 0.0, 1.0};
+	assert_true(pool_quartic_smallest_root_in(none, -10.0, 10.0, &t) < 0);
+	// Collision of two balls, one at rest, the other rolling towards it from 1 m away at 3 m/s:
+	// A = (-mu g / 2, 0), contact when 1 - 3 t + mu g t^2 / 2 = 2R (the quartic's first root).
+	const double R = 0.028575, mu_g = 0.01 * 9.81;
+	double P = -1.0, V = 3.0, A = -0.5 * mu_g;
+	double q[5] = {A * A, 2.0 * A * V, V * V + 2.0 * A * P, 2.0 * V * P, P * P - 4.0 * R * R};
+	double gap = 1.0 - 2.0 * R; // solve V t + A t^2 = gap (A < 0): smaller root
+	double expect = (V - sqrt(V * V + 4.0 * A * gap)) / (-2.0 * A);
+	assert_int_equal(pool_quartic_smallest_root_in(q, 0.0, 10.0, &t), 0);
+	assert_true(fabs(t - expect) < 1e-14);
+}
+
+int main(void) {
+	const struct CMUnitTest tests[] = {
+	    cmocka_unit_test(test_public_cases),
+	    cmocka_unit_test(test_equal_accelerations),
+	    cmocka_unit_test(test_tiny_leading_coefficient),
+	    cmocka_unit_test(test_zero_constant_term),
+	    cmocka_unit_test(test_near_double_roots),
+	    cmocka_unit_test(test_lower_degrees),
+	    cmocka_unit_test(test_zero_constant_and_bad_input),
+	    cmocka_unit_test(test_random_products),
+	    cmocka_unit_test(test_smallest_root_in),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
