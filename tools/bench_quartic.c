@@ -22,7 +22,8 @@ typedef struct bq_opts {
 	long count, runs, ref, show;
 } bq_opts;
 
-static long bq_show_left; // --show-failures: how many more pool failures to print
+static long bq_show_left; // --show-failures: how many more failures to print
+static bool bq_show_gsl;  // --show-gsl-failures: GSL's too
 
 static void bq_usage(FILE *out) {
 	fprintf(out,
@@ -34,7 +35,8 @@ static void bq_usage(FILE *out) {
 	        "  --count N  quartics per set (default 1000000)\n"
 	        "  --runs N   timed runs per solver and set (default 5, at most %d)\n"
 	        "  --ref N    cases per set checked against the reference (default 20000)\n"
-	        "  --show-failures N  print the first N well-conditioned cases pool gets wrong\n",
+	        "  --show-failures N  print the first N well-conditioned cases pool gets wrong\n"
+	        "  --show-gsl-failures N  the same, for the cases either solver gets wrong\n",
 	        BQ_MAX_RUNS);
 }
 
@@ -227,19 +229,26 @@ static bq_check bq_verify(bq_gsl *g, const double *coeffs, long n) {
 			++ck.well;
 		int np = pool_quartic_real_roots(c, rp);
 		int ng = bq_gsl_real_roots(g, c, rg);
-		long before = ck.pool.count + ck.pool.roots + ck.pool.smallest;
+		long before_pool = ck.pool.count + ck.pool.roots + ck.pool.smallest;
+		long before_gsl = ck.gsl.count + ck.gsl.roots + ck.gsl.smallest;
 		bq_tally(&ck.pool, &ref, np, rp);
-		if (bq_show_left > 0 && ck.pool.count + ck.pool.roots + ck.pool.smallest != before) {
+		bq_tally(&ck.gsl, &ref, ng, rg);
+		bool pool_failed = ck.pool.count + ck.pool.roots + ck.pool.smallest != before_pool;
+		bool gsl_failed = ck.gsl.count + ck.gsl.roots + ck.gsl.smallest != before_gsl;
+		if (bq_show_left > 0 && (pool_failed || (gsl_failed && bq_show_gsl))) {
 			--bq_show_left;
-			printf("pool failure: coeffs %.17g %.17g %.17g %.17g %.17g\n  pool:", c[0], c[1], c[2], c[3], c[4]);
+			printf("%s failure: coeffs %.17g %.17g %.17g %.17g %.17g\n  pool:", pool_failed ? "pool" : "GSL", c[0], c[1],
+			       c[2], c[3], c[4]);
 			for (int k = 0; k < np; ++k)
 				printf(" %.17g", rp[k]);
+			printf("\n  GSL: ");
+			for (int k = 0; k < ng; ++k)
+				printf(" %.17g", rg[k]);
 			printf("\n  reference:");
 			for (int k = 0; k < ref.n_real; ++k)
 				printf(" %.17g (kappa %.3g, tol %.3g)", ref.real[k], ref.kappa[k], ref.tol[k]);
 			printf("\n");
 		}
-		bq_tally(&ck.gsl, &ref, ng, rg);
 		if (!ref.ill) {
 			double r, r_ref, tol;
 			bool has = pool_quartic_smallest_root_in(c, 0.0, bq_window, &r) == 0;
@@ -267,9 +276,10 @@ int main(int argc, char **argv) {
 			if (bq_parse_long("--runs", v, 1, BQ_MAX_RUNS, &o.runs))
 				return 2;
 			++i;
-		} else if (strcmp(a, "--show-failures") == 0) {
-			if (bq_parse_long("--show-failures", v, 0, 1000000, &o.show))
+		} else if (strcmp(a, "--show-failures") == 0 || strcmp(a, "--show-gsl-failures") == 0) {
+			if (bq_parse_long(a, v, 0, 1000000, &o.show))
 				return 2;
+			bq_show_gsl = strcmp(a, "--show-gsl-failures") == 0;
 			++i;
 		} else if (strcmp(a, "--ref") == 0) {
 			if (bq_parse_long("--ref", v, 0, 100000000, &o.ref))
