@@ -1,0 +1,206 @@
+// pool-bench-shot: how long libpool takes to simulate whole shots, reusing one pool_sim.
+// Scenes: a 15-ball break at 8 m/s on a frozen rack and on a rack with a tiny gap, and random
+// shots on the table a break leaves. Prints median and minimum time per shot, events per second,
+// peak memory before and after the runs, and the machine.
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <pool/pool.h>
+
+static double now_s(void) {
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static long maxrss_kib(void) {
+	struct rusage ru;
+	getrusage(RUSAGE_SELF, &ru);
+	return ru.ru_maxrss;
+}
+
+static int cmp_double(const void *a, const void *b) {
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+static void print_machine(void) {
+	char model[256] = "unknown";
+	FILE *f = fopen("/proc/cpuinfo", "r");
+	if (f) {
+		char line[512];
+		while (fgets(line, sizeof line, f))
+			if (strncmp(line, "model name", 10) == 0) {
+				char *colon = strchr(line, ':');
+				if (colon) {
+					snprintf(model, sizeof model, "%s", colon + 2);
+					model[strcspn(model, "\n")] = '\0';
+				}
+				break;
+			}
+		fclose(f);
+	}
+	printf("machine: %s, %ld cores online, libpool %d\n", model, sysconf(_SC_NPROCESSORS_ONLN), POOL_VERSION);
+}
+
+typedef struct shot {
+	pool_ball_state balls[16];
+	int n;
+	int32_t cue;
+	pool_strike strike;
+} shot;
+
+static int run(pool_sim *sim, const shot *s, int *events) {
+	if (pool_sim_reset(sim, NULL, NULL) != POOL_OK)
+		return -1;
+	for (int i = 0; i < s->n; ++i)
+		if (pool_sim_add_ball(sim, &s->balls[i], NULL) != POOL_OK)
+			return -1;
+	if (pool_sim_strike(sim, s->cue, &s->strike, NULL) != POOL_OK || pool_sim_run(sim) != POOL_OK)
+		return -1;
+	pool_sim_events(sim, events);
+	return 0;
+}
+
+// Times `runs` runs over the shot list (cycled); prints median / min per shot and events/s.
+// t holds `runs` doubles (allocated before the memory baseline).
+static int measure(pool_sim *sim, const char *name, const shot *shots, int count, int runs, double *t) {
+	long events = 0;
+	double total = 0.0;
+	for (int r = 0; r < runs; ++r) {
+		int ev = 0;
+		double t0 = now_s();
+		if (run(sim, &shots[r % count], &ev)) {
+			fprintf(stderr, "pool-bench-shot: %s: shot %d failed\n", name, r % count);
+			return -1;
+		}
+		t[r] = now_s() - t0;
+		total += t[r];
+		events += ev;
+	}
+	qsort(t, (size_t)runs, sizeof *t, cmp_double);
+	printf("%-28s runs %6d  median %8.1f us  min %8.1f us  events/shot %6.1f  events/s %.3g\n", name, runs,
+	       1e6 * t[runs / 2], 1e6 * t[0], (double)events / runs, (double)events / total);
+	fflush(stdout);
+	return 0;
+}
+
+static uint64_t rng = 0x243F6A8885A308D3ull;
+static double urand(void) {
+	rng ^= rng << 13;
+	rng ^= rng >> 7;
+	rng ^= rng << 17;
+	return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+int main(int argc, char **argv) {
+	int runs = 2000;
+	for (int i = 1; i < argc; ++i) {
+		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+			printf("usage: pool-bench-shot [--runs N]\n"
+			       "Times whole shots with libpool, reusing one pool_sim (pool_sim_reset):\n"
+			       "  break-frozen      15-ball rack, gap 0, centre-ball break at 8 m/s\n"
+			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
+			       "  post-break        random strikes (0.5-6 m/s, spin, elevation) on the tables\n"
+			       "                    that breaks leave\n"
+			       "Prints median and minimum time per shot over N runs (default 2000), events per\n"
+			       "second, peak resident memory (getrusage) before and after, and the machine.\n");
+			return 0;
+		}
+		if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
+			runs = atoi(argv[++i]);
+			if (runs <= 0) {
+				fprintf(stderr, "pool-bench-shot: --runs: must be > 0\n");
+				return 2;
+			}
+		} else {
+			fprintf(stderr, "pool-bench-shot: unknown argument '%s' (see --help)\n", argv[i]);
+			return 2;
+		}
+	}
+	print_machine();
+	pool_sim_def def = pool_default_sim_def();
+	pool_sim *sim;
+	pool_error err;
+	if (pool_sim_create(&def, &sim, &err) != POOL_OK) {
+		fprintf(stderr, "pool-bench-shot: %s\n", err.message);
+		return 1;
+	}
+	shot frozen, gap;
+	frozen.n = pool_rack(POOL_RACK_8BALL, &def.table, &def.params, 0.0, frozen.balls, 16);
+	gap.n = pool_rack(POOL_RACK_8BALL, &def.table, &def.params, 1e-4, gap.balls, 16);
+	frozen.cue = gap.cue = 0;
+	frozen.strike = gap.strike = pool_break_strike(8.0);
+
+	// Post-break tables: breaks with slightly varied aim; then random strikes of the cue ball
+	// (re-spotted on the head spot if pocketed) among the balls left.
+	enum { TABLES = 50, PER_TABLE = 20 };
+	shot *post = malloc(sizeof *post * TABLES * PER_TABLE);
+	if (!post)
+		return 1;
+	int count = 0;
+	const double R = def.params.ball_radius;
+	for (int k = 0; k < TABLES; ++k) {
+		shot b = gap;
+		b.strike.phi = (urand() - 0.5) * 0.01;
+		int ev;
+		if (run(sim, &b, &ev))
+			return 1;
+		shot table;
+		table.n = 0;
+		const pool_ball_state *fin = pool_sim_balls(sim);
+		for (int i = 0; i < pool_sim_ball_count(sim); ++i)
+			if (fin[i].motion != POOL_MOTION_POCKETED || fin[i].id == 0) {
+				pool_ball_state s = fin[i];
+				if (s.motion == POOL_MOTION_POCKETED) {
+					s.pos.x = 0.25 * def.table.length;
+					s.pos.y = 0.5 * def.table.width;
+				}
+				s.vel = s.omega = (pool_vec3){0, 0, 0};
+				s.motion = POOL_MOTION_STATIONARY;
+				int ok = 1;
+				for (int j = 0; j < table.n; ++j)
+					ok &= hypot(s.pos.x - table.balls[j].pos.x, s.pos.y - table.balls[j].pos.y) >= 2 * R;
+				if (ok)
+					table.balls[table.n++] = s;
+			}
+		for (int j = 0; j < PER_TABLE; ++j) {
+			shot s = table;
+			s.cue = 0;
+			double r = 0.7 * R * sqrt(urand()), a = urand() * 6.283185307179586;
+			s.strike = (pool_strike){0.5 + 5.5 * urand(), urand() * 6.283185307179586,
+			                         urand() < 0.7 ? 0.0 : urand() * 0.5, r * cos(a), r * sin(a)};
+			post[count++] = s;
+		}
+	}
+	// Warm up (allocations reach their final size), then measure.
+	double *times = malloc(sizeof *times * (size_t)runs * 5);
+	if (!times)
+		return 1;
+	memset(times, 0, sizeof *times * (size_t)runs * 5); // resident before the baseline
+	printf("measuring...\n");
+	fflush(stdout);
+	int ev;
+	run(sim, &frozen, &ev);
+	for (int i = 0; i < count; ++i)
+		run(sim, &post[i], &ev);
+	long rss_before = maxrss_kib();
+	if (measure(sim, "break-frozen (8 m/s)", &frozen, 1, runs, times) ||
+	    measure(sim, "break-gap-0.1mm (8 m/s)", &gap, 1, runs, times) ||
+	    measure(sim, "post-break random shots", post, count, runs * 5, times))
+		return 1;
+	long rss_after = maxrss_kib();
+	printf("peak resident memory: %ld KiB after warm-up, %ld KiB after %d shots (one pool_sim reused)\n",
+	       rss_before, rss_after, runs * 7);
+	free(times);
+	free(post);
+	pool_sim_destroy(sim);
+	return 0;
+}
