@@ -67,6 +67,9 @@ Settings default_settings() {
 	// A touching pair must separate by 10 um before a new contact counts as a new collision:
 	// balls resting against each other or a cushion jitter by far less than that.
 	s.release_gap = 1e-5;
+	// Airborne mode only: a ball within 1 um of the cloth is on it (its contact then holds it
+	// there at zero depth), and a landing slower than 5 cm/s settles instead of bouncing (the
+	// rebound would fly for under 5 ms at e_table 0.5: libpool's settle rule).
 	s.cloth_gap = 1e-6;
 	s.settle_speed = 0.05;
 	// Contacts approaching faster than 0.1 mm/s are impacts (planar mode solves them without
