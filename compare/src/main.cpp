@@ -1,6 +1,7 @@
 // pool-compare: measures engine plugins against the closed forms and libpool on shared scenarios
 // (docs/INTERFACES.md, docs/ENGINES.md).
 #include <dirent.h>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -33,7 +34,8 @@ const char kUsage[] =
     "\n"
     "Runs each scenario on each engine plugin at each time step and measures it against the\n"
     "closed form (one ball on the cloth) or libpool's exact result. Writes DIR/results.json,\n"
-    "DIR/results.csv, plots (DIR/*.png) and DIR/report.md, and prints the table.\n"
+    "DIR/results.csv, plots (DIR/*.png) and DIR/report.md, and prints the table. What the\n"
+    "engines themselves print goes to DIR/engines.log.\n"
     "\n"
     "  --scenario FILE  libpool-scenario/1 file; repeat it or list several files after it\n"
     "                   (default: every compare/scenarios/*.json)\n"
@@ -217,6 +219,45 @@ int parse_args(int argc, char **argv, Options *o) {
 	return -1;
 }
 
+// Engines print diagnostics of their own (ODE's "LCP internal error", ...) straight to standard
+// error; while an engine runs, its standard error goes to DIR/engines.log instead, so the table
+// stays readable, and the record counts the lines.
+class EngineLog {
+public:
+	explicit EngineLog(const std::string &path) : fd_(open(path.c_str(), O_CREAT | O_TRUNC | O_RDWR, 0644)) {}
+	~EngineLog() {
+		if (fd_ >= 0)
+			close(fd_);
+	}
+	template <typename F>
+	int capture(const std::string &title, F run) {
+		if (fd_ < 0) {
+			run();
+			return 0;
+		}
+		const std::string header = "== " + title + "\n";
+		if (write(fd_, header.data(), header.size()) < 0)
+			return 0;
+		const off_t start = lseek(fd_, 0, SEEK_END);
+		std::fflush(stderr);
+		const int saved = dup(2);
+		dup2(fd_, 2);
+		run();
+		std::fflush(stderr);
+		dup2(saved, 2);
+		close(saved);
+		const off_t end = lseek(fd_, 0, SEEK_END);
+		int lines = 0;
+		std::vector<char> text(static_cast<size_t>(end - start));
+		if (!text.empty() && pread(fd_, text.data(), text.size(), start) == static_cast<ssize_t>(text.size()))
+			lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+		return lines;
+	}
+
+private:
+	int fd_;
+};
+
 std::string fmt_dt(double dt) {
 	char buf[32];
 	std::snprintf(buf, sizeof buf, "%.0e", dt);
@@ -321,6 +362,7 @@ int main(int argc, char **argv) {
 
 	int status = 0;
 	std::vector<Record> records;
+	EngineLog engine_log(o.out + "/engines.log");
 	for (const auto &scenario : scenarios) {
 		std::string error;
 		std::unique_ptr<Reference> ref = make_closed_form_reference(*scenario);
@@ -343,11 +385,16 @@ int main(int argc, char **argv) {
 				settings.dt = dt;
 				settings.spread_runs = many_balls ? o.spread : 0;
 				const double t0 = cpu_now();
-				Record rec = run_engine(*scenario, *ref, plugin, settings);
+				Record rec;
+				const std::string title = scenario->name + " / " + plugin.api->name + " / " +
+				                          (plugin.api->event_driven ? std::string("event") : "dt " + fmt_dt(dt));
+				const int lines = engine_log.capture(title, [&] { rec = run_engine(*scenario, *ref, plugin, settings); });
+				rec.engine_messages = lines;
 				if (!o.quiet)
-					std::cerr << "  " << scenario->name << " / " << rec.engine << " / "
-					          << (plugin.api->event_driven ? std::string("event") : "dt " + fmt_dt(dt)) << ": "
-					          << (rec.error.empty() ? "done" : rec.error) << " (" << cpu_now() - t0 << " s CPU)\n";
+					std::cerr << "  " << title << ": " << (rec.error.empty() ? "done" : rec.error) << " ("
+					          << cpu_now() - t0 << " s CPU"
+					          << (lines ? ", " + std::to_string(lines) + " engine messages in engines.log" : "")
+					          << ")\n";
 				if (publisher && !publisher->publish(rec, &error)) {
 					std::cerr << "pool-compare: " << error << "\n";
 					status = 1;
@@ -357,13 +404,14 @@ int main(int argc, char **argv) {
 		}
 	}
 
+	fill_consistency(&records);
 	std::string error;
 	if (!write_results_json(o.out + "/results.json", records, &error) ||
 	    !write_results_csv(o.out + "/results.csv", records, &error)) {
 		std::cerr << "pool-compare: " << error << "\n";
 		return 1;
 	}
-	std::cout << results_table(records, false);
+	std::cout << results_table(records, false) << "\n" << accuracy_summary(records, 1e-3, false);
 	const std::vector<std::string> plots = o.plots ? draw_plots(o) : std::vector<std::string>();
 	if (!write_report(o.out, records, command_line, plots, &error)) {
 		std::cerr << "pool-compare: " << error << "\n";

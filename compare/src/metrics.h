@@ -35,7 +35,7 @@ struct Record {
 	double final_position_error = kNone; ///< m, max over balls, at rest / at max_time
 	double event_position_error = kNone; ///< m, max over balls and sample instants
 	double direction_error_deg = kNone;  ///< deg, max angle between velocities (moving balls)
-	double energy_error = kNone;         ///< J, max |E - E_ref| over sample instants
+	double energy_error = kNone;         ///< J, max |E - E_ref| over sample instants away from collisions
 	double event_time_error = kNone;     ///< s, max of the three below
 	double first_contact_time_error = kNone; ///< s, first ball-ball or ball-cushion contact
 	double slide_roll_time_error = kNone;    ///< s, each reference slide->roll vs the engine's nearest
@@ -49,10 +49,15 @@ struct Record {
 	int pocket_mismatches = 0;           ///< balls pocketed in one and not the other
 	double max_penetration = kNone;      ///< m, from the plugin's stats and the sampled states
 
+	int engine_messages = 0;         ///< lines the engine printed (kept in DIR/engines.log)
+
 	int spread_runs = 0;             ///< perturbed runs (0: not measured)
 	double spread_perturbation = kNone; ///< m, displacement of the lead ball in each run
 	double spread_rms = kNone;       ///< m, RMS over runs and balls of the final-position change
 	double spread_max = kNone;       ///< m, largest final-position change
+
+	double consistency_error = kNone; ///< m, final positions against the same engine at its finest dt
+	std::vector<BallSample> final_balls; ///< final states (not written; for consistency_error)
 
 	/// Simulated seconds per CPU second.
 	double speed() const { return sim_seconds / cpu_seconds; }
@@ -67,7 +72,7 @@ public:
 
 	double position_error = 0.0;  ///< m, max over instants and balls (xy)
 	double direction_error = kNone; ///< deg
-	double energy_error = 0.0;    ///< J
+	double energy_error = 0.0;    ///< J, away from collisions
 	double penetration = 0.0;     ///< m, deepest ball-ball overlap seen
 	int missing_balls = 0;        ///< reference balls the engine did not report
 

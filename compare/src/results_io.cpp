@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -36,6 +37,7 @@ json_t *record_object(const Record &r) {
 	json_object_set_new(o, "steps", json_integer(r.steps));
 	json_object_set_new(o, "event_position_error", number_or_null(r.event_position_error));
 	json_object_set_new(o, "direction_error_deg", number_or_null(r.direction_error_deg));
+	json_object_set_new(o, "consistency_error", number_or_null(r.consistency_error));
 	json_object_set_new(o, "first_contact_time_error", number_or_null(r.first_contact_time_error));
 	json_object_set_new(o, "slide_roll_time_error", number_or_null(r.slide_roll_time_error));
 	json_object_set_new(o, "stop_time_error", number_or_null(r.stop_time_error));
@@ -44,6 +46,7 @@ json_t *record_object(const Record &r) {
 	json_object_set_new(o, "collisions_reference", json_integer(r.collisions_reference));
 	json_object_set_new(o, "collisions_engine", json_integer(r.collisions_engine));
 	json_object_set_new(o, "pocket_mismatches", json_integer(r.pocket_mismatches));
+	json_object_set_new(o, "engine_messages", json_integer(r.engine_messages));
 	json_object_set_new(o, "spread_runs", json_integer(r.spread_runs));
 	json_object_set_new(o, "spread_perturbation", number_or_null(r.spread_perturbation));
 	json_object_set_new(o, "spread_rms", number_or_null(r.spread_rms));
@@ -207,6 +210,92 @@ std::string results_table(const std::vector<Record> &records, bool markdown) {
 	return out.str();
 }
 
+void fill_consistency(std::vector<Record> *records) {
+	for (Record &r : *records) {
+		if (r.event_driven || !r.error.empty() || r.final_balls.empty())
+			continue;
+		const Record *finest = nullptr;
+		for (const Record &o : *records)
+			if (o.scenario == r.scenario && o.engine == r.engine && !o.event_driven && o.error.empty() &&
+			    !o.final_balls.empty() && (!finest || o.dt < finest->dt))
+				finest = &o;
+		if (finest && finest != &r)
+			r.consistency_error = max_position_error(r.final_balls, finest->final_balls);
+	}
+}
+
+std::string accuracy_summary(const std::vector<Record> &records, double tolerance, bool markdown) {
+	std::vector<std::vector<std::string>> rows;
+	std::vector<std::string> done;
+	for (const Record &r : records) {
+		if (r.event_driven)
+			continue;
+		const std::string key = r.scenario + "/" + r.engine;
+		if (std::find(done.begin(), done.end(), key) != done.end())
+			continue;
+		done.push_back(key);
+		const Record *libpool = nullptr, *reached = nullptr, *best = nullptr;
+		for (const Record &o : records) {
+			if (o.scenario != r.scenario)
+				continue;
+			if (o.engine == "libpool" && o.event_driven && o.error.empty())
+				libpool = &o;
+			if (o.engine != r.engine || o.event_driven || !std::isfinite(o.final_position_error))
+				continue;
+			if (o.final_position_error <= tolerance && (!reached || o.dt > reached->dt))
+				reached = &o;
+			if (!best || o.final_position_error < best->final_position_error)
+				best = &o;
+		}
+		std::string where, ratio = "-";
+		if (reached) {
+			where = "dt " + fmt(reached->dt, "%.0e") + " (" + fmt(reached->final_position_error, "%.2g") + " m, " +
+			        fmt(reached->speed(), "%.3g") + " sim s / CPU s)";
+			if (libpool)
+				ratio = fmt(libpool->speed() / reached->speed(), "%.3g") + "x";
+		} else if (best) {
+			where = "never (best " + fmt(best->final_position_error, "%.2g") + " m at dt " + fmt(best->dt, "%.0e") + ")";
+		} else {
+			where = "no run";
+		}
+		rows.push_back({r.scenario, r.engine, where,
+		                libpool ? fmt(libpool->final_position_error, "%.2g") + " m, " + fmt(libpool->speed(), "%.3g")
+		                        : "-",
+		                ratio, r.reference});
+	}
+	const std::vector<std::string> head = {"scenario", "engine", "largest dt within " + fmt(tolerance, "%g") + " m",
+	                                       "libpool (error, sim s / CPU s)", "libpool faster by", "reference"};
+	std::ostringstream out;
+	if (markdown) {
+		out << "| " << head[0];
+		for (size_t i = 1; i < head.size(); ++i)
+			out << " | " << head[i];
+		out << " |\n|---|---|---|---|---:|---|\n";
+		for (const auto &row : rows) {
+			out << "|";
+			for (const std::string &c : row)
+				out << " " << c << " |";
+			out << "\n";
+		}
+		return out.str();
+	}
+	std::vector<size_t> width(head.size());
+	for (size_t i = 0; i < head.size(); ++i)
+		width[i] = head[i].size();
+	for (const auto &row : rows)
+		for (size_t i = 0; i < row.size(); ++i)
+			width[i] = std::max(width[i], row[i].size());
+	auto line = [&](const std::vector<std::string> &row) {
+		for (size_t i = 0; i < row.size(); ++i)
+			out << (i ? "  " : "") << row[i] << std::string(i + 1 < row.size() ? width[i] - row[i].size() : 0, ' ');
+		out << "\n";
+	};
+	line(head);
+	for (const auto &row : rows)
+		line(row);
+	return out.str();
+}
+
 std::string machine_description() {
 	std::ifstream in("/proc/cpuinfo");
 	std::string line, model = "unknown CPU";
@@ -229,6 +318,11 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 	       "is the RMS change of the final positions when the lead ball starts 1 um elsewhere "
 	       "(predictability). Every field is in `results.json` / `results.csv`.\n\n";
 	out << results_table(records, true) << "\n";
+	out << "## Speed at equal accuracy\n\nThe largest swept time step at which each time-stepped engine's final "
+	       "positions are within 1 mm of the reference, and libpool's speed over the engine's there. "
+	       "`consistency_error` in results.json separates the discretisation error (against the engine's own "
+	       "finest step) from modelling differences.\n\n";
+	out << accuracy_summary(records, 1e-3, true) << "\n";
 	std::map<std::string, std::string> notes;
 	for (const Record &r : records)
 		notes[r.engine] = r.description;

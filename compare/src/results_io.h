@@ -22,6 +22,15 @@ bool write_results_csv(const std::string &path, const std::vector<Record> &recor
 /// The readable table; markdown = true gives a markdown table.
 std::string results_table(const std::vector<Record> &records, bool markdown);
 
+/// Sets consistency_error: each time-stepped run's final positions against the same engine's
+/// run at its finest time step in the same scenario (the discretisation part of the error).
+void fill_consistency(std::vector<Record> *records);
+
+/// Per scenario and time-stepped engine: the largest time step whose final-position error is at
+/// most `tolerance` m, and how much faster libpool is than the engine there (or that it never gets
+/// there in the sweep).
+std::string accuracy_summary(const std::vector<Record> &records, double tolerance, bool markdown);
+
 /// One line describing the machine (CPU model, cores).
 std::string machine_description();
 

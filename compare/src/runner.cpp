@@ -187,6 +187,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 		rec.sim_seconds = stats.sim_time;
 		rec.steps = stats.steps;
 		rec.final_position_error = max_position_error(final_balls, ref_final);
+		rec.final_balls = final_balls;
 		rec.event_position_error = errors.position_error;
 		rec.direction_error_deg = errors.direction_error;
 		rec.energy_error = errors.energy_error;
