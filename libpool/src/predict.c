@@ -54,17 +54,19 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 		2.0 * pool_v3_dot(dv, dp),
 		pool_v3_dot(dp, dp) - d0 * d0,
 	};
-	double roots[4];
-	int n = pool_quartic_real_roots(c, roots);
-	for (int i = 0; i < n; ++i) {
-		double t = roots[i];
-		if (t < 0.0 || t > T)
-			continue;
+	// Roots in ascending order from the window solver; a root where the balls separate (a touching
+	// pair moving apart, or a graze) is stepped over.
+	const double hi = isfinite(T) ? T : 1e12;
+	double lo = 0.0, t;
+	for (int it = 0; it < 4 && pool_quartic_smallest_root_in(c, lo, hi, &t) == 0; ++it) {
 		// Approaching at the root: p . p' < 0 with |p| = 2R.
 		pool_vec3 p = pool_v3_madd(pool_v3_madd(dp, t, dv), t * t, da);
 		pool_vec3 dpdt = pool_v3_madd(dv, 2.0 * t, da);
 		if (pool_v3_dot(p, dpdt) < -POOL_APPROACH_EPS * d0)
 			return t;
+		lo = t + 1e-13 * (1.0 + t);
+		if (!(lo <= hi))
+			break;
 	}
 	// Insurance against a root the solver lost: apart now, overlapping at T means a crossing.
 	const double fT = pool_v3_dot(pool_v3_madd(pool_v3_madd(dp, T, dv), T * T, da),
