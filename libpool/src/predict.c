@@ -36,13 +36,13 @@ static int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double 
 }
 
 double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
-	const double dist = pool_v3_len(dp);
 	const double d0 = 2.0 * R;
+	const double dd = pool_v3_dot(dp, dp);
 	if (!(T >= 0.0))
 		return INFINITY;
-	if (dist - d0 <= POOL_TOUCH_TOLERANCE) {
+	if (dd <= (d0 + POOL_TOUCH_TOLERANCE) * (d0 + POOL_TOUCH_TOLERANCE)) {
 		// Touching (a frozen rack, or just after an event): collide now only if approaching.
-		if (pool_v3_dot(dp, dv) < -POOL_APPROACH_EPS * dist)
+		if (pool_v3_dot(dp, dv) < -POOL_APPROACH_EPS * sqrt(dd))
 			return 0.0;
 	}
 	if (T == 0.0 || !may_touch(dp, dv, da, R, T))

@@ -49,6 +49,7 @@ typedef struct ball_rt {
 	pool_rail own_rail;       // for a cushion or pocket event
 	pool_pocket own_pocket;   // for a pocket event
 	int partner;              // other ball of the pending event in the queue slot, or -1
+	pool_vec3 acc;            // m/s^2, centre acceleration over the segment (for predictions)
 } ball_rt;
 
 struct pool_sim {
@@ -265,6 +266,7 @@ static void start_segment(pool_sim *sim, int i, const pool_ball_state *s, double
 	ball_rt *b = &sim->rt[i];
 	sim->cur[i] = *s;
 	b->t0 = t;
+	b->acc = pool_motion_accel(p, s);
 	b->own_time = INFINITY;
 	b->own_kind = POOL_EVENT_SPIN_STOP;
 	b->own_rail = POOL_RAIL_NONE;
@@ -302,6 +304,20 @@ static void state_now(const pool_sim *sim, int i, double t, pool_ball_state *out
 	pool_motion_evolve(&sim->def.params, &sim->cur[i], t - sim->rt[i].t0, out);
 }
 
+// Ball i's centre position and velocity at time t (within its segment), from its polynomial.
+static void path_now(const pool_sim *sim, int i, double t, pool_vec3 *pos, pool_vec3 *vel) {
+	const pool_ball_state *s = &sim->cur[i];
+	const ball_rt *b = &sim->rt[i];
+	const double dt = t - b->t0;
+	if (dt == 0.0 || !translating(s->motion)) {
+		*pos = s->pos;
+		*vel = s->vel;
+		return;
+	}
+	*pos = pool_v3_madd(pool_v3_madd(s->pos, dt, s->vel), 0.5 * dt * dt, b->acc);
+	*vel = pool_v3_madd(s->vel, dt, b->acc);
+}
+
 // Recomputes ball i's queue slot at time `now`: its own event or its earliest ball contact.
 static void repredict(pool_sim *sim, int i, double now) {
 	const pool_params *p = &sim->def.params;
@@ -311,9 +327,10 @@ static void repredict(pool_sim *sim, int i, double now) {
 	if (bi->active) {
 		best.time = bi->own_time;
 		best.kind = (int)bi->own_kind;
-		pool_ball_state si;
-		state_now(sim, i, now, &si);
-		const pool_vec3 ai = pool_motion_accel(p, &sim->cur[i]);
+		// Centre paths as polynomials in (t - now); within both segments no clamping applies.
+		pool_vec3 pi, vi;
+		path_now(sim, i, now, &pi, &vi);
+		const pool_vec3 ai = bi->acc;
 		const int mi = translating(sim->cur[i].motion);
 		const double horizon_i = fmin(bi->own_time, sim->def.max_time);
 		for (int j = 0; j < sim->n; ++j) {
@@ -324,14 +341,16 @@ static void repredict(pool_sim *sim, int i, double now) {
 			double T = fmin(fmin(horizon_i, bj->own_time), best.time) - now;
 			if (!(T >= 0.0))
 				continue;
-			pool_ball_state sj;
-			state_now(sim, j, now, &sj);
-			const pool_vec3 aj = pool_motion_accel(p, &sim->cur[j]);
+			pool_vec3 pj, vj;
+			path_now(sim, j, now, &pj, &vj);
 			// Same operand order whichever ball predicts, so both get the same time.
-			const pool_ball_state *lo = i < j ? &si : &sj, *hi = i < j ? &sj : &si;
-			const pool_vec3 alo = i < j ? ai : aj, ahi = i < j ? aj : ai;
-			double tau = pool_predict_ball_ball(pool_v3_sub(lo->pos, hi->pos), pool_v3_sub(lo->vel, hi->vel),
-			                                    pool_v3_scale(pool_v3_sub(alo, ahi), 0.5), p->ball_radius, T);
+			pool_vec3 dp = pool_v3_sub(pi, pj), dv = pool_v3_sub(vi, vj), da = pool_v3_scale(pool_v3_sub(ai, bj->acc), 0.5);
+			if (j < i) {
+				dp = pool_v3_scale(dp, -1.0);
+				dv = pool_v3_scale(dv, -1.0);
+				da = pool_v3_scale(da, -1.0);
+			}
+			double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
 			if (!(tau <= T))
 				continue;
 			int32_t a = sim->cur[i].id, b = sim->cur[j].id;
