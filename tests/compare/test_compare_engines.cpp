@@ -134,11 +134,15 @@ void engine_reproduces_slide(const Plugin &plugin) {
 	CHECK(fine.event_time_error < coarse.event_time_error, "%s: %.3g s at 1e-4, %.3g s at 1e-2", name,
 	      fine.event_time_error, coarse.event_time_error);
 	CHECK(fine.final_position_error < 1e-3, "%s: %.3g m at 1e-4", name, fine.final_position_error);
-	CHECK(fine.event_time_error < 1e-3, "%s: %.3g s at 1e-4", name, fine.event_time_error);
+	// Rolling onset is pure discretisation; the stop time also depends on the engine's rest
+	// threshold (1e-3 m/s stops 10 ms early at a rolling deceleration of 0.098 m/s^2).
+	CHECK(fine.slide_roll_time_error < 1e-3, "%s: roll onset %.3g s off at 1e-4", name, fine.slide_roll_time_error);
+	CHECK(fine.stop_time_error < 2e-2, "%s: stop %.3g s off at 1e-4", name, fine.stop_time_error);
 	CHECK(coarse.final_position_error < 0.05, "%s: %.3g m at 1e-2", name, coarse.final_position_error);
-	std::printf("  %s slide: position %.3g m / %.3g m, event time %.3g s / %.3g s at dt 1e-2 / 1e-4\n", name,
-	            coarse.final_position_error, fine.final_position_error, coarse.event_time_error,
-	            fine.event_time_error);
+	std::printf("  %s slide: position %.3g m / %.3g m, event time %.3g s / %.3g s (roll onset %.3g s, stop %.3g s) "
+	            "at dt 1e-2 / 1e-4\n",
+	            name, coarse.final_position_error, fine.final_position_error, coarse.event_time_error,
+	            fine.event_time_error, fine.slide_roll_time_error, fine.stop_time_error);
 }
 
 // Frictionless (cloth and ball-ball) elastic head-on hit: momentum conserved, speed handed over.
