@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # End-to-end tests of pool-compare: the frozen example plugin and libpool run and produce the
 # outputs; bad options, scenarios and plugins are refused with exit status 2 and a clear message.
-# usage: test_pool_compare.sh POOL_COMPARE PLUGIN_DIR TEST_PLUGIN_DIR SOURCE_DIR WORK_DIR lcm|nolcm
+# usage: test_pool_compare.sh POOL_COMPARE PLUGIN_DIR TEST_PLUGIN_DIR SOURCE_DIR WORK_DIR lcm|nolcm [LCM_PYTHON_DIR]
 set -u
-BIN=$1 PLUGINS=$2 TEST_PLUGINS=$3 SRC=$4 WORK=$5 LCM=$6
+BIN=$1 PLUGINS=$2 TEST_PLUGINS=$3 SRC=$4 WORK=$5 LCM=$6 LCM_PY=${7:-}
 SCEN=$SRC/compare/scenarios
 PY=$SRC/.venv/bin/python
 [ -x "$PY" ] || PY=python3
@@ -61,6 +61,33 @@ expect 2 "nofile.json: cannot read" --engines frozen --scenario "$WORK/nofile.js
 if [ "$LCM" = lcm ]; then
 	"$BIN" --engines frozen --scenario "$SCEN/slide.json" --out "$WORK/lcm" --no-plots --quiet \
 		--lcm-url memq:// >/dev/null 2>"$WORK/err" || fail "--lcm-url memq:// exited $?: $(cat "$WORK/err")"
+	# A subscriber receives every record on POOL_BENCH over multicast, inside a private network
+	# namespace (skipped where unshare is not allowed).
+	if [ -n "$LCM_PY" ] && unshare --net true 2>/dev/null && "$PY" -c "import lcm" 2>/dev/null; then
+		cat >"$WORK/sub.py" <<'PY'
+import select, sys, time
+sys.path.insert(0, sys.argv[1])
+import lcm
+from pool_lcm import bench_result_t
+lc = lcm.LCM("udpm://239.255.76.67:7667?ttl=0")
+got = []
+lc.subscribe("POOL_BENCH", lambda ch, data: got.append(bench_result_t.decode(data)))
+open(sys.argv[2], "w").close()  # ready
+end = time.time() + 20
+while time.time() < end and len(got) < 2:
+    if select.select([lc.fileno()], [], [], 0.1)[0]:
+        lc.handle()
+assert [(m.scenario, m.engine, m.reference) for m in got] == [("slide", "libpool", "closed-form"), ("slide", "frozen", "closed-form")], got
+assert got[0].dt == 0.0 and got[0].final_position_error < 1e-8 and '"engine":"libpool"' in got[0].json
+assert abs(got[1].final_position_error - 10.901) < 1e-3
+print("ok: POOL_BENCH carried", len(got), "records")
+PY
+		unshare --net sh -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo &&
+			("$0" "$1/sub.py" "$2" "$1/ready" & while [ ! -e "$1/ready" ]; do sleep 0.1; done; sleep 0.3;
+			 "$3" --engines libpool,frozen --scenario "$4" --out "$1/lcm2" --no-plots --quiet \
+			   --lcm-url "udpm://239.255.76.67:7667?ttl=0" >/dev/null; wait $!)' \
+			"$PY" "$WORK" "$LCM_PY" "$BIN" "$SCEN/slide.json" || fail "POOL_BENCH subscriber"
+	fi
 else
 	expect 2 "built without LCM" --engines frozen --scenario "$SCEN/slide.json" --lcm-url memq://
 fi
