@@ -23,17 +23,23 @@
 // Horner's rounding (about 2n u) plus the rounding of the coefficients themselves.
 #define POOL_Q_TOUCH 16.0
 #define POOL_Q_MAX_ITER 200
-// Halley's iteration stops when its step is below this times |x|: the error left is of order its
-// cube. Roots: far below rounding. Critical points only need about sqrt(u) relative accuracy (an
-// error d in a critical point changes p there by p'' d^2 / 2, below rounding).
-#define POOL_Q_STOP_ROOT 1e-8
-#define POOL_Q_STOP_CRIT 1e-5
+
+// When Halley's iteration stops: its step is below rel |x| (the error left is of order its cube),
+// or its predicted error is below abs_rel |x|. Roots: to rounding. Critical points only need about
+// sqrt(u) relative accuracy (an error d in a critical point changes p there by p'' d^2 / 2, below
+// the rounding of p).
+typedef struct pool_q_stop {
+	double rel, abs_rel;
+} pool_q_stop;
+static const pool_q_stop pool_q_stop_root = {1e-8, 0.25 * POOL_Q_U};
+static const pool_q_stop pool_q_stop_crit = {1e-5, 1e-11};
 
 typedef struct pool_q_val {
 	double x;  // point
 	double f;  // p(x)
 	double d1; // p'(x)
 	double d2; // p''(x)
+	double d3; // p'''(x) (NAN when not computed)
 	int sign;  // sign of p(x); 0 when it is zero within rounding (critical points only)
 } pool_q_val;
 
@@ -47,22 +53,26 @@ typedef struct pool_q_p {
 	bool safe;
 } pool_q_p;
 
-// p(x), p'(x), p''(x) (all divided by |x|^n when p->safe and |x| > 1).
-static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, double *d2) {
+// p(x), p'(x), p''(x), p'''(x) (the first three divided by |x|^n when p->safe and |x| > 1,
+// and then p''' is not computed: NAN).
+static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, double *d2, double *d3) {
 	const double *b = p->b;
 	const int n = p->n;
-	double f, d = 0.0, e = 0.0;
+	double f, d = 0.0, e = 0.0, g = 0.0;
 	if (!p->safe || fabs(x) <= 1.0) {
 		f = b[n];
 		for (int k = n - 1; k >= 0; --k) {
+			g = g * x + e;
 			e = e * x + d;
 			d = d * x + f;
 			f = f * x + b[k];
 		}
 		*d1 = d;
 		*d2 = 2.0 * e;
+		*d3 = 6.0 * g;
 		return f;
 	}
+	*d3 = NAN;
 	double z = 1.0 / x, q = b[0];
 	for (int k = 1; k <= n; ++k) {
 		e = e * z + d;
@@ -77,9 +87,9 @@ static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, do
 }
 
 static pool_q_val pool_q_eval(const pool_q_p *p, double x) {
-	double d1, d2;
-	double f = pool_q_eval_all(p, x, &d1, &d2);
-	pool_q_val v = {x, f, d1, d2, (f > 0.0) - (f < 0.0)};
+	double d1, d2, d3;
+	double f = pool_q_eval_all(p, x, &d1, &d2, &d3);
+	pool_q_val v = {x, f, d1, d2, d3, (f > 0.0) - (f < 0.0)};
 	return v;
 }
 
@@ -153,7 +163,7 @@ static double pool_q_guess_step(const pool_q_p *p, const pool_q_val *v, int dir)
 // every evaluation shrinks; stops when the step is below stop_rel |x| (the next error is then of
 // order stop_rel^3, far below rounding for stop_rel <= 1e-8). Returns NAN when no finite bracket
 // could be built (overflow).
-static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, double stop_rel) {
+static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, const pool_q_stop *stop) {
 	const int sa = a.sign;
 	double x;
 	if (!isfinite(a.x) || !isfinite(c.x)) {
@@ -165,8 +175,8 @@ static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, do
 			x = e.x + dir * t;
 			if (!isfinite(x) || i > 2100)
 				return NAN;
-			double d, d2;
-			double f = pool_q_eval_all(p, x, &d, &d2);
+			double d, d2, d3;
+			double f = pool_q_eval_all(p, x, &d, &d2, &d3);
 			int s = (f > 0.0) - (f < 0.0);
 			if (s == 0)
 				return x;
@@ -195,23 +205,35 @@ static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, do
 	}
 	double lo = a.x, hi = c.x;
 	for (int it = 0; it < POOL_Q_MAX_ITER; ++it) {
-		double d, d2;
-		double f = pool_q_eval_all(p, x, &d, &d2);
+		double d, d2, d3;
+		double f = pool_q_eval_all(p, x, &d, &d2, &d3);
 		if (f == 0.0)
 			return x;
 		if ((f > 0.0) - (f < 0.0) == sa)
 			lo = x;
 		else
 			hi = x;
-		// Halley's step f d / (d^2 - f d2 / 2), written with ratios (no products that could
-		// underflow with extreme scaling).
-		double newton = f / d;
-		double den = 1.0 - 0.5 * newton * (d2 / d);
-		double dx = den > 0.5 ? newton / den : newton;
+		double dx;
+		if (p->safe) {
+			// Halley's step written with ratios: no products that could underflow or overflow.
+			double newton = f / d;
+			double den = 1.0 - 0.5 * newton * (d2 / d);
+			dx = den > 0.5 ? newton / den : newton;
+		} else {
+			// Halley's step f d / (d^2 - f d2 / 2); Newton's where Halley's is far from it.
+			double dd = d * d, den = dd - 0.5 * f * d2;
+			dx = den > 0.5 * dd ? f * d / den : f / d;
+		}
 		double xn = x - dx;
 		double adx = fabs(dx);
-		if (adx <= stop_rel * fabs(x))
+		if (adx <= stop->rel * fabs(x))
 			return fmin(fmax(xn, lo), hi); // the root is in [lo, hi]: never return outside
+		// Halley's error after this step is about K dx^3 with K = |3 p''^2 - 2 p' p'''| / (12 p'^2):
+		// stop when that is below the target (saves the confirming iteration). Only for a step
+		// small against |x|: p evaluated far from the root (|x| >> |root|) carries a rounding error
+		// of the larger scale, which the next iteration, evaluated at the root's scale, removes.
+		if (!p->safe && adx <= 1e-3 * fabs(xn) && fabs(3.0 * d2 * d2 - 2.0 * d3 * d) * (adx * adx * adx) <= 12.0 * d * d * stop->abs_rel * fabs(xn))
+			return fmin(fmax(xn, lo), hi);
 		if (!(xn > lo && xn < hi)) {
 			// The step left the bracket (or p' vanished): bisect instead.
 			xn = pool_q_split(lo, hi);
@@ -225,7 +247,7 @@ static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, do
 
 // Roots of a degree-n polynomial b (b[n] != 0, coefficient of x^k in b[k]) in [lo, hi], ascending,
 // by multiplicity, at most n. lo/hi may be infinite. With first_only, stops at the first root.
-static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out, bool first_only, double stop_rel);
+static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out, bool first_only, const pool_q_stop *stop);
 
 static int pool_q_quadratic(const pool_q_p *p, double lo, double hi, double *out) {
 	const double *b = p->b;
@@ -265,7 +287,7 @@ static int pool_q_quadratic(const pool_q_p *p, double lo, double hi, double *out
 	return m;
 }
 
-static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out, bool first_only, double stop_rel) {
+static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out, bool first_only, const pool_q_stop *stop) {
 	const double *b = p->b;
 	const int n = p->n;
 	if (n <= 0)
@@ -287,7 +309,7 @@ static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out,
 		d[k] = (double)(k + 1) * b[k + 1];
 	double crit[3];
 	pool_q_p dp = {d, n - 1, p->safe};
-	int ncrit = pool_q_roots_in(&dp, lo, hi, crit, false, POOL_Q_STOP_CRIT);
+	int ncrit = pool_q_roots_in(&dp, lo, hi, crit, false, &pool_q_stop_crit);
 
 	int count = 0;
 	const int cap = first_only ? 1 : n;
@@ -300,8 +322,8 @@ static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out,
 			out[0] = xi + 0.0;
 			return 1;
 		}
-		pool_q_val inf = {v.sign == (b[n] > 0.0 ? 1 : -1) ? -INFINITY : INFINITY, NAN, NAN, NAN, -v.sign};
-		double r = inf.x < 0.0 ? pool_q_bracketed(p, inf, v, stop_rel) : pool_q_bracketed(p, v, inf, stop_rel);
+		pool_q_val inf = {v.sign == (b[n] > 0.0 ? 1 : -1) ? -INFINITY : INFINITY, NAN, NAN, NAN, NAN, -v.sign};
+		double r = inf.x < 0.0 ? pool_q_bracketed(p, inf, v, stop) : pool_q_bracketed(p, v, inf, stop);
 		if (r == r) {
 			out[0] = r;
 			return 1;
@@ -312,7 +334,7 @@ static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out,
 	pool_q_val prev;
 	if (lo == -INFINITY) {
 		prev.x = -INFINITY;
-		prev.f = prev.d1 = prev.d2 = NAN;
+		prev.f = prev.d1 = prev.d2 = prev.d3 = NAN;
 		prev.sign = ((b[n] > 0.0) == (n % 2 == 0)) ? 1 : -1;
 	} else {
 		prev = pool_q_eval(p, lo);
@@ -331,10 +353,23 @@ static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out,
 		if (!(cx > prev.x))
 			continue; // coincides with the window's left end, already evaluated
 		pool_q_val v = pool_q_eval(p, cx);
-		if (fabs(v.f) <= POOL_Q_TOUCH * POOL_Q_U * pool_q_abs_sum(p, cx))
+		if (fabs(v.f) <= POOL_Q_TOUCH * POOL_Q_U * pool_q_abs_sum(p, cx)) {
+			// A multiple root: the critical point is now reported as a root, so polish it to full
+			// accuracy (it was only computed to what bracketing needs) by Newton on p'.
 			v.sign = 0;
+			for (int it = 0; it < 4; ++it) {
+				double g1, g2, g3;
+				double g = pool_q_eval_all(&dp, cx, &g1, &g2, &g3);
+				double step = g / g1;
+				if (!(fabs(step) < 1e-6 * fabs(cx)))
+					break; // p'' ~ 0 too (a higher multiplicity), or no progress: keep cx
+				cx -= step;
+				if (fabs(step) <= 2.0 * POOL_Q_U * fabs(cx))
+					break;
+			}
+		}
 		if (prev.sign != 0 && v.sign != 0 && prev.sign != v.sign) {
-			double r = pool_q_bracketed(p, prev, v, stop_rel);
+			double r = pool_q_bracketed(p, prev, v, stop);
 			if (r == r && count < cap) {
 				out[count++] = r;
 				if (first_only)
@@ -353,7 +388,7 @@ static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out,
 	pool_q_val last;
 	if (hi == INFINITY) {
 		last.x = INFINITY;
-		last.f = last.d1 = last.d2 = NAN;
+		last.f = last.d1 = last.d2 = last.d3 = NAN;
 		last.sign = b[n] > 0.0 ? 1 : -1;
 	} else {
 		if (!(hi > prev.x))
@@ -361,7 +396,7 @@ static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out,
 		last = pool_q_eval(p, hi);
 	}
 	if (prev.sign != 0 && last.sign != 0 && prev.sign != last.sign) {
-		double r = pool_q_bracketed(p, prev, last, stop_rel);
+		double r = pool_q_bracketed(p, prev, last, stop);
 		if (r == r && count < cap)
 			out[count++] = r;
 	} else if (last.sign == 0 && count < cap) {
@@ -404,11 +439,12 @@ static bool pool_q_prepare(const double c[5], pool_q_poly *p) {
 	p->n = n - z;
 	n = p->n;
 	double sgn = a[n + z] > 0.0 ? 1.0 : -1.0;
-	// Fast path: coefficients in [2^-100, 2^100] cannot overflow Horner at any root.
+	// Fast path: coefficients in [2^-60, 2^60] cannot overflow Horner (nor Halley's products) at
+	// any root.
 	bool moderate = true;
 	for (int k = 0; k <= n; ++k) {
 		double m = fabs(a[k + z]);
-		if (m != 0.0 && (m < 0x1p-100 || m > 0x1p100))
+		if (m != 0.0 && (m < 0x1p-60 || m > 0x1p60))
 			moderate = false;
 	}
 	if (moderate) {
@@ -449,7 +485,7 @@ int pool_quartic_real_roots(const double c[5], double roots[4]) {
 		return 0;
 	double y[4];
 	pool_q_p pp = {p.b, p.n, p.safe};
-	int m = pool_q_roots_in(&pp, -INFINITY, INFINITY, y, false, POOL_Q_STOP_ROOT);
+	int m = pool_q_roots_in(&pp, -INFINITY, INFINITY, y, false, &pool_q_stop_root);
 	// Merge the exact zero roots in ascending order; drop roots that overflow when unscaled.
 	int count = 0, zeros = p.zeros;
 	for (int i = 0; i < m; ++i) {
@@ -480,7 +516,7 @@ int pool_quartic_smallest_root_in(const double c[5], double lo, double hi, doubl
 	if (zero_in)
 		yhi = fmin(yhi, 0.0);
 	pool_q_p pp = {p.b, p.n, p.safe};
-	int m = pool_q_roots_in(&pp, ylo, yhi, y, true, POOL_Q_STOP_ROOT);
+	int m = pool_q_roots_in(&pp, ylo, yhi, y, true, &pool_q_stop_root);
 	if (m > 0) {
 		double x = pool_q_unscale(y[0], p.scale);
 		if (x >= lo && x <= hi && !(zero_in && x > 0.0)) {
