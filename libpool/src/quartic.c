@@ -32,7 +32,7 @@ typedef struct pool_q_stop {
 	double rel, abs_rel;
 } pool_q_stop;
 static const pool_q_stop pool_q_stop_root = {1e-8, 0.25 * POOL_Q_U};
-static const pool_q_stop pool_q_stop_crit = {1e-5, 1e-11};
+static const pool_q_stop pool_q_stop_crit = {1e-4, 1e-9};
 
 typedef struct pool_q_val {
 	double x;  // point
@@ -55,17 +55,33 @@ typedef struct pool_q_p {
 
 // p(x), p'(x), p''(x), p'''(x) (the first three divided by |x|^n when p->safe and |x| > 1,
 // and then p''' is not computed: NAN).
+// Horner's scheme for p and its derivatives with the degree a constant (unrolled by the compiler).
+#define POOL_Q_HORNER(N)                                                                          \
+	do {                                                                                          \
+		f = b[N];                                                                                 \
+		for (int k = (N)-1; k >= 0; --k) {                                                        \
+			g = g * x + e;                                                                        \
+			e = e * x + d;                                                                        \
+			d = d * x + f;                                                                        \
+			f = f * x + b[k];                                                                     \
+		}                                                                                         \
+	} while (0)
+
 static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, double *d2, double *d3) {
 	const double *b = p->b;
 	const int n = p->n;
 	double f, d = 0.0, e = 0.0, g = 0.0;
 	if (!p->safe || fabs(x) <= 1.0) {
-		f = b[n];
-		for (int k = n - 1; k >= 0; --k) {
-			g = g * x + e;
-			e = e * x + d;
-			d = d * x + f;
-			f = f * x + b[k];
+		switch (n) {
+		case 4:
+			POOL_Q_HORNER(4);
+			break;
+		case 3:
+			POOL_Q_HORNER(3);
+			break;
+		default:
+			POOL_Q_HORNER(n);
+			break;
 		}
 		*d1 = d;
 		*d2 = 2.0 * e;
@@ -160,9 +176,8 @@ static double pool_q_guess_step(const pool_q_p *p, const pool_q_val *v, int dir)
 
 // The single root of p between a and c (p monotone there, signs at the ends opposite and non-zero).
 // a or c may be infinite. Halley's iteration (cubic convergence) safeguarded by the bracket, which
-// every evaluation shrinks; stops when the step is below stop_rel |x| (the next error is then of
-// order stop_rel^3, far below rounding for stop_rel <= 1e-8). Returns NAN when no finite bracket
-// could be built (overflow).
+// every evaluation shrinks (a step leaving it is replaced by a bisection); stops per *stop.
+// Returns NAN when no finite bracket could be built (overflow).
 static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, const pool_q_stop *stop) {
 	const int sa = a.sign;
 	double x;
