@@ -86,6 +86,8 @@ public:
 	double pair_friction(const Material &a, const Material &b) const;
 	/// Restitution of a pair of our objects (libpool's e of that pair; 0 on the cloth in planar mode).
 	double pair_restitution(const Material &a, const Material &b) const;
+	/// Called by the world between collision detection and the solver of every step.
+	void before_solve();
 
 private:
 	bool step();
@@ -125,6 +127,7 @@ private:
 	std::vector<uint8_t> touch_rail_; ///< n*segments: ball touching that cushion
 	std::vector<uint8_t> seen_ball_;  ///< touching contacts in this step's manifolds
 	std::vector<uint8_t> seen_rail_;
+	std::vector<uint8_t> impact_;     ///< per ball: hits a ball or cushion in this step
 	std::vector<pool_engine_event> events_;
 	std::vector<pool_engine_event> pending_; ///< this step's events, sorted before publishing
 	int64_t steps_ = 0;
