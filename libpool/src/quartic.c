@@ -453,6 +453,8 @@ static bool pool_q_prepare(const double c[5], pool_q_poly *p) {
 	p->zeros = z;
 	p->n = n - z;
 	n = p->n;
+	if (n == 0)
+		return true; // a monomial: only the exact zero roots
 	double sgn = a[n + z] > 0.0 ? 1.0 : -1.0;
 	// Fast path: coefficients in [2^-60, 2^60] cannot overflow Horner (nor Halley's products) at
 	// any root.

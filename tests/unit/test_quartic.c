@@ -464,6 +464,11 @@ static void test_zero_constant_and_bad_input(void **state) {
 	assert_int_equal(tq_solve(1e300, -3e300, 2e300, 0.0, 0.0, r), 4);
 	assert_true(r[0] == 0.0 && r[1] == 0.0 && fabs(r[2] - 1.0) < 1e-15 && fabs(r[3] - 2.0) < 1e-15);
 	assert_int_equal(tq_solve(DBL_MAX, DBL_MAX, -DBL_MAX, -DBL_MAX, 0.0, r), 4);
+	// Monomials with extreme coefficients: only the exact zero roots.
+	assert_int_equal(tq_solve(0.0, 0.0, 0.0, 1e100, 0.0, r), 1);
+	assert_true(r[0] == 0.0);
+	assert_int_equal(tq_solve(1e-200, 0.0, 0.0, 0.0, 0.0, r), 4);
+	assert_true(r[0] == 0.0 && r[3] == 0.0);
 	// A subnormal leading coefficient: its root (-2e323) is beyond the double range and dropped.
 	assert_int_equal(tq_solve(DBL_TRUE_MIN, 1.0, -6.0, 11.0, -6.0, r), 3);
 	for (int k = 0; k < 3; ++k)
@@ -610,6 +615,33 @@ static void test_random_products(void **state) {
 	assert_true(checked > 4000);
 }
 
+// Arbitrary bit patterns and magnitudes: never a crash or hang, 0 to 4 finite sorted roots, and a
+// window root inside its window.
+static void test_arbitrary_input(void **state) {
+	(void)state;
+	for (int i = 0; i < 200000; ++i) {
+		double c[5];
+		for (int k = 0; k < 5; ++k) {
+			if (i % 2 == 0) {
+				uint64_t bits = tq_rng = tq_rng * 6364136223846793005ULL + 1442695040888963407ULL;
+				memcpy(&c[k], &bits, sizeof c[k]);
+			} else {
+				c[k] = tq_uniform() < 0.125 ? 0.0 : tq_signed(pow(10.0, -300.0 + 600.0 * tq_uniform()));
+			}
+		}
+		double r[4], t;
+		int n = pool_quartic_real_roots(c, r);
+		assert_true(n >= 0 && n <= 4);
+		for (int k = 0; k < n; ++k) {
+			assert_true(isfinite(r[k]));
+			if (k > 0)
+				assert_true(r[k - 1] <= r[k]);
+		}
+		if (pool_quartic_smallest_root_in(c, -1e10, 1e10, &t) == 0)
+			assert_true(t >= -1e10 && t <= 1e10);
+	}
+}
+
 // --- pool_quartic_smallest_root_in ---
 
 static void test_smallest_root_in(void **state) {
@@ -657,6 +689,7 @@ int main(void) {
 	    cmocka_unit_test(test_lower_degrees),
 	    cmocka_unit_test(test_zero_constant_and_bad_input),
 	    cmocka_unit_test(test_random_products),
+	    cmocka_unit_test(test_arbitrary_input),
 	    cmocka_unit_test(test_smallest_root_in),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
