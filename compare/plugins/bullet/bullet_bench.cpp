@@ -68,7 +68,7 @@ double run_once(const pool_engine_api *api, const std::string &json, double dt, 
 } // namespace
 
 int main(int argc, char **argv) {
-	const char *path = argc > 1 ? argv[1] : POOL_BULLET_PLUGIN_PATH;
+	const char *path = argc > 1 && argv[1][0] ? argv[1] : POOL_BULLET_PLUGIN_PATH;
 	const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 7;
 	void *module = dlopen(path, RTLD_NOW | RTLD_LOCAL);
 	if (!module) {
