@@ -79,8 +79,14 @@ static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, do
 		case 3:
 			POOL_Q_HORNER(3);
 			break;
+		case 2:
+			POOL_Q_HORNER(2);
+			break;
+		case 1:
+			POOL_Q_HORNER(1);
+			break;
 		default:
-			POOL_Q_HORNER(n);
+			f = b[0];
 			break;
 		}
 		*d1 = d;
