@@ -303,8 +303,6 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	}
 
 	const size_t ns = table_.segments.size();
-	touch_ball_.assign(size_t(n) * size_t(n), 0);
-	seen_ball_.assign(size_t(n) * size_t(n), 0);
 	touch_rail_.assign(size_t(n) * ns, 0);
 	seen_rail_.assign(size_t(n) * ns, 0);
 	impact_.assign(size_t(n), 0);
@@ -314,7 +312,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 		const btVector3 pi = balls_[size_t(i)]->body->getCenterOfMassPosition();
 		for (int j = i + 1; j < n; ++j)
 			if ((pi - balls_[size_t(j)]->body->getCenterOfMassPosition()).length() <= touch)
-				touch_ball_[size_t(i) * size_t(n) + size_t(j)] = 1;
+				touch_ball_.insert({size_t(i), size_t(j)});
 		const double p[3] = {pi.x(), pi.y(), pi.z()};
 		for (size_t k = 0; k < ns; ++k)
 			if (distance_to_axis(table_.segments[k], p) <=
@@ -468,7 +466,7 @@ void Engine::remove_ball(Ball &ball, int32_t state) {
 
 void Engine::update_contacts(double t_detect) {
 	const size_t n = balls_.size(), ns = table_.segments.size();
-	std::fill(seen_ball_.begin(), seen_ball_.end(), 0);
+	seen_ball_.clear();
 	std::fill(seen_rail_.begin(), seen_rail_.end(), 0);
 	const int count = dispatcher_->getNumManifolds();
 	for (int k = 0; k < count; ++k) {
@@ -484,7 +482,7 @@ void Engine::update_contacts(double t_detect) {
 			continue;
 		if (a->kind == kBall && b->kind == kBall) {
 			const size_t i = size_t(std::min(a->index, b->index)), j = size_t(std::max(a->index, b->index));
-			seen_ball_[i * n + j] = 1;
+			seen_ball_.push_back({i, j});
 		} else if (a->kind == kBall && b->kind == kCushion) {
 			seen_rail_[size_t(a->index) * ns + size_t(b->index)] = 1;
 		} else if (b->kind == kBall && a->kind == kCushion) {
@@ -494,22 +492,24 @@ void Engine::update_contacts(double t_detect) {
 	// A contact begins when a manifold first holds a touching point; it ends only once the gap
 	// exceeds release_gap, so a resting contact that flickers in the manifold is one contact.
 	const double R = params_.ball_radius;
+	std::sort(seen_ball_.begin(), seen_ball_.end());
+	seen_ball_.erase(std::unique(seen_ball_.begin(), seen_ball_.end()), seen_ball_.end());
+	for (const auto &pair : seen_ball_)
+		if (touch_ball_.insert(pair).second)
+			report(POOL_ENGINE_EVENT_BALL_BALL, balls_[pair.first]->id, balls_[pair.second]->id, t_detect);
+	for (auto it = touch_ball_.begin(); it != touch_ball_.end();) {
+		const Ball &bi = *balls_[it->first], &bj = *balls_[it->second];
+		const bool seen = std::binary_search(seen_ball_.begin(), seen_ball_.end(), *it);
+		if (!seen && (!bi.active || !bj.active ||
+		              (bi.body->getCenterOfMassPosition() - bj.body->getCenterOfMassPosition()).length() >
+		                  2.0 * R + settings_.release_gap))
+			it = touch_ball_.erase(it);
+		else
+			++it;
+	}
 	for (size_t i = 0; i < n; ++i) {
-		Ball &bi = *balls_[i];
+		const Ball &bi = *balls_[i];
 		const btVector3 pi = bi.body->getCenterOfMassPosition();
-		for (size_t j = i + 1; j < n; ++j) {
-			uint8_t &touch = touch_ball_[i * n + j];
-			if (seen_ball_[i * n + j]) {
-				if (!touch)
-					report(POOL_ENGINE_EVENT_BALL_BALL, bi.id, balls_[j]->id, t_detect);
-				touch = 1;
-			} else if (touch) {
-				const Ball &bj = *balls_[j];
-				if (!bi.active || !bj.active ||
-				    (pi - bj.body->getCenterOfMassPosition()).length() > 2.0 * R + settings_.release_gap)
-					touch = 0;
-			}
-		}
 		const double p[3] = {pi.x(), pi.y(), pi.z()};
 		for (size_t k = 0; k < ns; ++k) {
 			uint8_t &touch = touch_rail_[i * ns + k];

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -123,9 +124,9 @@ private:
 	std::vector<Material> rail_materials_;
 	std::vector<std::unique_ptr<Ball>> balls_;
 
-	std::vector<uint8_t> touch_ball_; ///< n*n: pair currently in contact
+	std::set<std::pair<size_t, size_t>> touch_ball_;   ///< ball pairs (i < j) in contact
+	std::vector<std::pair<size_t, size_t>> seen_ball_; ///< touching pairs in this step's manifolds
 	std::vector<uint8_t> touch_rail_; ///< n*segments: ball touching that cushion
-	std::vector<uint8_t> seen_ball_;  ///< touching contacts in this step's manifolds
 	std::vector<uint8_t> seen_rail_;
 	std::vector<uint8_t> impact_;     ///< per ball: hits a ball or cushion in this step
 	std::vector<pool_engine_event> events_;
