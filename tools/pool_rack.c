@@ -1,18 +1,15 @@
 // pool-rack: writes a libpool-scenario/1 file with a standard 8-ball or 9-ball rack and a break
 // strike, so nobody has to compute triangle coordinates by hand.
-#include <errno.h>
-#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic_file.h"
+#include "cli.h"
 #include "json_writer.h"
 #include "scenario.h"
 
-#define EXIT_BAD_INPUT 2
-#define EXIT_INTERNAL 1
+#define PROGRAM "pool-rack"
 #define POOL_PI 3.14159265358979323846
 
 // Cue speed of a firm amateur break (the ball leaves at about 1.5 times this).
@@ -51,23 +48,6 @@ static const char usage_text[] =
 	"  -o FILE         write to FILE (atomically) instead of standard output\n"
 	"  -h, --help      show this help\n";
 
-static int usage_error(const char *format, const char *arg) {
-	fprintf(stderr, "pool-rack: ");
-	fprintf(stderr, format, arg);
-	fprintf(stderr, "\nTry 'pool-rack --help'.\n");
-	return EXIT_BAD_INPUT;
-}
-
-static bool parse_double(const char *text, double *out) {
-	char *end = NULL;
-	errno = 0;
-	double x = strtod(text, &end);
-	if (errno || end == text || *end || !isfinite(x))
-		return false;
-	*out = x;
-	return true;
-}
-
 static int parse_options(int argc, char **argv, rack_options *o) {
 	memset(o, 0, sizeof *o);
 	o->speed = DEFAULT_SPEED;
@@ -81,7 +61,7 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 			o->help = true;
 		} else if (strcmp(a, "8ball") == 0 || strcmp(a, "9ball") == 0) {
 			if (have_kind)
-				return usage_error("unexpected argument '%s' (one rack)", a);
+				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one rack)", a);
 			o->kind = a[0] == '8' ? POOL_RACK_8BALL : POOL_RACK_9BALL;
 			have_kind = true;
 		} else if (strcmp(a, "--airborne") == 0) {
@@ -89,50 +69,52 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 		} else if (a[0] == '-' && a[1] != '\0' && !value) {
 			if (strcmp(a, "--speed") && strcmp(a, "--gap") && strcmp(a, "--spin") &&
 			    strcmp(a, "--phi") && strcmp(a, "--theta") && strcmp(a, "--table") && strcmp(a, "-o"))
-				return usage_error("unknown option '%s'", a);
-			return usage_error("option %s needs a value", a);
+				return pool_cli_usage_error(PROGRAM, "unknown option '%s'", a);
+			return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
 		} else if (strcmp(a, "--speed") == 0) {
-			if (!parse_double(value, &o->speed) || o->speed <= 0.0)
-				return usage_error("--speed: '%s' is not a positive speed in m/s", value);
+			if (!pool_cli_parse_double(value, &o->speed) || o->speed <= 0.0)
+				return pool_cli_usage_error(PROGRAM, "--speed: '%s' is not a positive speed in m/s", value);
 			++i;
 		} else if (strcmp(a, "--gap") == 0) {
-			if (!parse_double(value, &o->gap) || o->gap < 0.0)
-				return usage_error("--gap: '%s' is not a gap >= 0 in m", value);
+			if (!pool_cli_parse_double(value, &o->gap) || o->gap < 0.0)
+				return pool_cli_usage_error(PROGRAM, "--gap: '%s' is not a gap >= 0 in m", value);
 			++i;
 		} else if (strcmp(a, "--spin") == 0) {
 			char buffer[128];
 			snprintf(buffer, sizeof buffer, "%s", value);
 			char *comma = strchr(buffer, ',');
 			if (!comma)
-				return usage_error("--spin: '%s' is not A,B (tip offsets in m)", value);
+				return pool_cli_usage_error(PROGRAM, "--spin: '%s' is not A,B (tip offsets in m)", value);
 			*comma = '\0';
-			if (!parse_double(buffer, &o->a) || !parse_double(comma + 1, &o->b))
-				return usage_error("--spin: '%s' is not A,B (tip offsets in m)", value);
+			if (!pool_cli_parse_double(buffer, &o->a) || !pool_cli_parse_double(comma + 1, &o->b))
+				return pool_cli_usage_error(PROGRAM, "--spin: '%s' is not A,B (tip offsets in m)", value);
 			++i;
 		} else if (strcmp(a, "--phi") == 0) {
-			if (!parse_double(value, &o->phi))
-				return usage_error("--phi: '%s' is not an angle in degrees", value);
+			if (!pool_cli_parse_double(value, &o->phi))
+				return pool_cli_usage_error(PROGRAM, "--phi: '%s' is not an angle in degrees", value);
 			o->has_phi = true;
 			++i;
 		} else if (strcmp(a, "--theta") == 0) {
-			if (!parse_double(value, &o->theta))
-				return usage_error("--theta: '%s' is not an angle in degrees", value);
+			if (!pool_cli_parse_double(value, &o->theta))
+				return pool_cli_usage_error(PROGRAM, "--theta: '%s' is not an angle in degrees", value);
 			++i;
 		} else if (strcmp(a, "--table") == 0) {
 			pool_table_def t;
 			if (pool_table_preset(value, &t) != POOL_OK)
-				return usage_error("--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft)", value);
+				return pool_cli_usage_error(PROGRAM, "--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft)",
+				                            value);
 			o->table = value;
 			++i;
 		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
 			o->output = value;
 			++i;
 		} else {
-			return usage_error("unknown argument '%s' (expected 8ball or 9ball, or an option)", a);
+			return pool_cli_usage_error(PROGRAM, "unknown argument '%s' (expected 8ball or 9ball, "
+			                            "or an option)", a);
 		}
 	}
 	if (!o->help && !have_kind)
-		return usage_error("%s", "missing the rack: 8ball or 9ball");
+		return pool_cli_usage_error(PROGRAM, "%s", "missing the rack: 8ball or 9ball");
 	return 0;
 }
 
@@ -210,13 +192,13 @@ int main(int argc, char **argv) {
 	int count = pool_rack(o.kind, &table, &params, o.gap, balls, 32);
 	if (count < 0) {
 		fprintf(stderr, "pool-rack: %s\n", pool_result_str((pool_result)count));
-		return count == POOL_ERR_INTERNAL || count == POOL_ERR_OUT_OF_MEMORY ? EXIT_INTERNAL
-		                                                                      : EXIT_BAD_INPUT;
+		return count == POOL_ERR_INTERNAL || count == POOL_ERR_OUT_OF_MEMORY ? POOL_EXIT_INTERNAL
+		                                                                      : POOL_EXIT_BAD_INPUT;
 	}
 	char *json = scenario_json(&o, balls, count, params.ball_radius);
 	if (!json) {
 		fprintf(stderr, "pool-rack: out of memory\n");
-		return EXIT_INTERNAL;
+		return POOL_EXIT_INTERNAL;
 	}
 	// Whatever we write must load in pool-sim; checking here reports a bad --spin or a gap that
 	// pushes balls off the table with the scenario field it breaks.
@@ -225,20 +207,10 @@ int main(int argc, char **argv) {
 	if (pool_scenario_parse(json, strlen(json), &check, err, sizeof err) != 0) {
 		fprintf(stderr, "pool-rack: %s\n", err);
 		free(json);
-		return EXIT_BAD_INPUT;
+		return POOL_EXIT_BAD_INPUT;
 	}
 	pool_scenario_free(&check);
-	status = 0;
-	if (o.output) {
-		if (pool_write_file_atomic(o.output, json, strlen(json), err, sizeof err) != 0) {
-			fprintf(stderr, "pool-rack: %s\n", err);
-			status = EXIT_INTERNAL;
-		}
-	} else {
-		fputs(json, stdout);
-		if (fflush(stdout) != 0)
-			status = EXIT_INTERNAL;
-	}
+	status = pool_cli_write_output(PROGRAM, o.output, json);
 	free(json);
 	return status;
 }

@@ -1,21 +1,18 @@
 // pool-sim: simulates one shot from a libpool-scenario/1 file and prints its libpool-result/1.
 // Exit status: 0 success, 2 bad input or usage (message on stderr), 1 internal failure.
-#include <errno.h>
-#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "atomic_file.h"
+#include "cli.h"
 #include "scenario.h"
 #ifdef POOL_HAVE_LCM
 #include "sim_publish.h"
 #endif
 
-#define EXIT_BAD_INPUT 2
-#define EXIT_INTERNAL 1
+#define PROGRAM "pool-sim"
 
 /// Command-line options. New options (e.g. an LCM URL, a playback rate) add a field here, a
 /// case in parse_options and, if they watch the shot, an event hook.
@@ -55,13 +52,6 @@ static const char usage_text[] =
 	"\n"
 	"Exit status: 0 success, 2 bad input or usage (message names the field), 1 internal error.\n";
 
-static int usage_error(const char *format, const char *arg) {
-	fprintf(stderr, "pool-sim: ");
-	fprintf(stderr, format, arg);
-	fprintf(stderr, "\nTry 'pool-sim --help'.\n");
-	return EXIT_BAD_INPUT;
-}
-
 static int parse_options(int argc, char **argv, sim_options *o) {
 	memset(o, 0, sizeof *o);
 	bool only_files = false;
@@ -69,7 +59,7 @@ static int parse_options(int argc, char **argv, sim_options *o) {
 		const char *a = argv[i];
 		if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
 			if (o->scenario_path)
-				return usage_error("unexpected argument '%s' (one scenario per run)", a);
+				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one scenario per run)", a);
 			o->scenario_path = a;
 		} else if (strcmp(a, "--") == 0) {
 			only_files = true;
@@ -77,44 +67,39 @@ static int parse_options(int argc, char **argv, sim_options *o) {
 			o->help = true;
 		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
 			if (i + 1 >= argc)
-				return usage_error("option %s needs a file name", a);
+				return pool_cli_usage_error(PROGRAM, "option %s needs a file name", a);
 			o->output_path = argv[++i];
 		} else if (strcmp(a, "--sample") == 0) {
 			if (i + 1 >= argc)
-				return usage_error("option %s needs a time step in seconds", a);
-			char *end = NULL;
-			errno = 0;
-			double dt = strtod(argv[++i], &end);
-			if (errno || end == argv[i] || *end || !isfinite(dt) || dt <= 0.0)
-				return usage_error("--sample: '%s' is not a positive time step in seconds", argv[i]);
-			o->sample_dt = dt;
+				return pool_cli_usage_error(PROGRAM, "option %s needs a time step in seconds", a);
+			const char *value = argv[++i];
+			if (!pool_cli_parse_double(value, &o->sample_dt) || o->sample_dt <= 0.0)
+				return pool_cli_usage_error(PROGRAM, "--sample: '%s' is not a positive time step in seconds",
+				                            value);
 		} else if (strcmp(a, "--pretty") == 0) {
 			o->pretty = true;
 		} else if (strcmp(a, "--summary") == 0) {
 			o->summary = true;
 		} else if (strcmp(a, "--lcm-url") == 0 || strcmp(a, "--playback") == 0) {
 #ifndef POOL_HAVE_LCM
-			return usage_error("option %s needs a pool-sim built with LCM", a);
+			return pool_cli_usage_error(PROGRAM, "option %s needs a pool-sim built with LCM", a);
 #endif
 			if (i + 1 >= argc)
-				return usage_error("option %s needs a value", a);
+				return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
 			o->lcm = true;
 			if (strcmp(a, "--lcm-url") == 0) {
 				o->lcm_url = argv[++i];
 				continue;
 			}
-			char *end = NULL;
-			errno = 0;
-			double hz = strtod(argv[++i], &end);
-			if (errno || end == argv[i] || *end || !isfinite(hz) || hz <= 0.0)
-				return usage_error("--playback: '%s' is not a positive rate in Hz", argv[i]);
-			o->playback_hz = hz;
+			const char *value = argv[++i];
+			if (!pool_cli_parse_double(value, &o->playback_hz) || o->playback_hz <= 0.0)
+				return pool_cli_usage_error(PROGRAM, "--playback: '%s' is not a positive rate in Hz", value);
 		} else {
-			return usage_error("unknown option '%s'", a);
+			return pool_cli_usage_error(PROGRAM, "unknown option '%s'", a);
 		}
 	}
 	if (!o->help && !o->scenario_path)
-		return usage_error("%s", "missing SCENARIO.json");
+		return pool_cli_usage_error(PROGRAM, "%s", "missing SCENARIO.json");
 	return 0;
 }
 
@@ -182,7 +167,7 @@ int main(int argc, char **argv) {
 	char err[512];
 	if (pool_scenario_load_file(o.scenario_path, &scenario, err, sizeof err) != 0) {
 		fprintf(stderr, "pool-sim: %s\n", err);
-		return EXIT_BAD_INPUT;
+		return POOL_EXIT_BAD_INPUT;
 	}
 
 	pool_sim *sim = NULL;
@@ -193,7 +178,8 @@ int main(int argc, char **argv) {
 		fprintf(stderr, "pool-sim: %s\n", perr.message[0] ? perr.message : pool_result_str(r));
 		pool_sim_destroy(sim);
 		pool_scenario_free(&scenario);
-		return r == POOL_ERR_OUT_OF_MEMORY || r == POOL_ERR_INTERNAL ? EXIT_INTERNAL : EXIT_BAD_INPUT;
+		return r == POOL_ERR_OUT_OF_MEMORY || r == POOL_ERR_INTERNAL ? POOL_EXIT_INTERNAL
+		                                                              : POOL_EXIT_BAD_INPUT;
 	}
 
 	sim_event_hook hook = NULL;
@@ -206,7 +192,7 @@ int main(int argc, char **argv) {
 			fprintf(stderr, "pool-sim: %s\n", err);
 			pool_sim_destroy(sim);
 			pool_scenario_free(&scenario);
-			return EXIT_BAD_INPUT;
+			return POOL_EXIT_BAD_INPUT;
 		}
 		hook = pool_lcm_sim_publisher_event;
 		hook_user = publisher;
@@ -223,7 +209,7 @@ int main(int argc, char **argv) {
 			fprintf(stderr, "pool-sim: %s\n", err);
 			pool_sim_destroy(sim);
 			pool_scenario_free(&scenario);
-			return EXIT_INTERNAL;
+			return POOL_EXIT_INTERNAL;
 		}
 	}
 #endif
@@ -233,29 +219,18 @@ int main(int argc, char **argv) {
 		        pool_result_str(r));
 		pool_sim_destroy(sim);
 		pool_scenario_free(&scenario);
-		return EXIT_INTERNAL;
+		return POOL_EXIT_INTERNAL;
 	}
 	if (o.summary)
 		print_summary(sim, cpu);
 
 	pool_result_options ro = {.sample_dt = o.sample_dt, .pretty = o.pretty, .def = &scenario.def};
 	char *json = pool_result_json(sim, &ro);
-	status = 0;
 	if (!json) {
 		fprintf(stderr, "pool-sim: could not write the result (out of memory or sampling failed)\n");
-		status = EXIT_INTERNAL;
-	} else if (o.output_path) {
-		size_t length = strlen(json);
-		if (pool_write_file_atomic(o.output_path, json, length, err, sizeof err) != 0) {
-			fprintf(stderr, "pool-sim: %s\n", err);
-			status = EXIT_INTERNAL;
-		}
+		status = POOL_EXIT_INTERNAL;
 	} else {
-		fputs(json, stdout);
-		if (fflush(stdout) != 0 || ferror(stdout)) {
-			fprintf(stderr, "pool-sim: standard output: %s\n", strerror(errno));
-			status = EXIT_INTERNAL;
-		}
+		status = pool_cli_write_output(PROGRAM, o.output_path, json);
 	}
 	free(json);
 	pool_sim_destroy(sim);

@@ -1,0 +1,49 @@
+// Command-line plumbing shared by pool-sim and pool-rack.
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atomic_file.h"
+
+int pool_cli_usage_error(const char *program, const char *format, ...) {
+	va_list args;
+	va_start(args, format);
+	fprintf(stderr, "%s: ", program);
+	vfprintf(stderr, format, args);
+	fprintf(stderr, "\nTry '%s --help'.\n", program);
+	va_end(args);
+	return POOL_EXIT_BAD_INPUT;
+}
+
+bool pool_cli_parse_double(const char *text, double *out) {
+	char *end = NULL;
+	errno = 0;
+	double x = strtod(text, &end);
+	if (errno || end == text || *end || !isfinite(x))
+		return false;
+	*out = x;
+	return true;
+}
+
+int pool_cli_write_output(const char *program, const char *path, const char *text) {
+	size_t length = strlen(text);
+	if (path) {
+		char err[512];
+		if (pool_write_file_atomic(path, text, length, err, sizeof err) != 0) {
+			fprintf(stderr, "%s: %s\n", program, err);
+			return POOL_EXIT_INTERNAL;
+		}
+		return 0;
+	}
+	fputs(text, stdout);
+	if (fflush(stdout) != 0 || ferror(stdout)) {
+		fprintf(stderr, "%s: standard output: %s\n", program, strerror(errno));
+		return POOL_EXIT_INTERNAL;
+	}
+	return 0;
+}

@@ -1,0 +1,34 @@
+// Command-line plumbing shared by pool-sim and pool-rack: exit statuses, usage errors, number
+// options and writing the output document (INTERFACES.md: exit 2 names the offending option).
+#ifndef POOL_TOOLS_CLI_H
+#define POOL_TOOLS_CLI_H
+
+#include <stdbool.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Exit status for bad input or usage (the message names the option or field).
+#define POOL_EXIT_BAD_INPUT 2
+/// Exit status for an internal failure (out of memory, an output that cannot be written).
+#define POOL_EXIT_INTERNAL 1
+
+/// Prints "PROGRAM: <format, ...>" and "Try 'PROGRAM --help'." on standard error; returns
+/// POOL_EXIT_BAD_INPUT.
+int pool_cli_usage_error(const char *program, const char *format, ...)
+	__attribute__((format(printf, 2, 3)));
+
+/// Reads the whole of text as a finite double; false (out untouched) for empty text, trailing
+/// characters, overflow, inf or nan.
+bool pool_cli_parse_double(const char *text, double *out);
+
+/// Writes text to path atomically (pool_write_file_atomic), or to standard output when path is
+/// NULL. Returns 0, or POOL_EXIT_INTERNAL after printing "PROGRAM: <why>" on standard error.
+int pool_cli_write_output(const char *program, const char *path, const char *text);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
