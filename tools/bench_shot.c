@@ -9,16 +9,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include <time.h>
-#include <unistd.h>
 
 #include <pool/pool.h>
 
-static double now_s(void) {
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_util.h"
 
 static long maxrss_kib(void) {
 	struct rusage ru;
@@ -26,28 +20,10 @@ static long maxrss_kib(void) {
 	return ru.ru_maxrss;
 }
 
-static int cmp_double(const void *a, const void *b) {
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
-
 static void print_machine(void) {
-	char model[256] = "unknown";
-	FILE *f = fopen("/proc/cpuinfo", "r");
-	if (f) {
-		char line[512];
-		while (fgets(line, sizeof line, f))
-			if (strncmp(line, "model name", 10) == 0) {
-				char *colon = strchr(line, ':');
-				if (colon) {
-					snprintf(model, sizeof model, "%s", colon + 2);
-					model[strcspn(model, "\n")] = '\0';
-				}
-				break;
-			}
-		fclose(f);
-	}
-	printf("machine: %s, %ld cores online, libpool %d\n", model, sysconf(_SC_NPROCESSORS_ONLN), POOL_VERSION);
+	char model[256];
+	printf("machine: %s, %ld cores online, libpool %d\n", pool_bench_cpu_model(model, sizeof model),
+	       pool_bench_cpus_online(), POOL_VERSION);
 }
 
 typedef struct shot {
@@ -76,18 +52,18 @@ static int measure(pool_sim *sim, const char *name, const shot *shots, int count
 	double total = 0.0;
 	for (int r = 0; r < runs; ++r) {
 		int ev = 0;
-		double t0 = now_s();
+		double t0 = pool_bench_now_s();
 		if (run(sim, &shots[r % count], &ev)) {
 			fprintf(stderr, "pool-bench-shot: %s: shot %d failed\n", name, r % count);
 			return -1;
 		}
-		t[r] = now_s() - t0;
+		t[r] = pool_bench_now_s() - t0;
 		total += t[r];
 		events += ev;
 	}
-	qsort(t, (size_t)runs, sizeof *t, cmp_double);
-	printf("%-28s runs %6d  median %8.1f us  min %8.1f us  events/shot %6.1f  events/s %.3g\n", name, runs,
-	       1e6 * t[runs / 2], 1e6 * t[0], (double)events / runs, (double)events / total);
+	pool_bench_summary sum = pool_bench_summarise(t, (size_t)runs);
+	printf("%-28s runs %6d  median %8.1f us  min %8.1f us  events/shot %6.1f  events/s %.3g\n", name,
+	       runs, 1e6 * sum.median, 1e6 * sum.min, (double)events / runs, (double)events / total);
 	fflush(stdout);
 	return 0;
 }
@@ -198,7 +174,7 @@ int main(int argc, char **argv) {
 	if (!times)
 		return 1;
 	memset(times, 0, sizeof *times * (size_t)runs * 5); // resident before the baseline
-	qsort(times, (size_t)runs * 5, sizeof *times, cmp_double); // glibc's qsort buffer too
+	pool_bench_summarise(times, (size_t)runs * 5);      // sorting allocates glibc's qsort buffer too
 	printf("measuring...\n");
 	fflush(stdout);
 	int ev;

@@ -29,7 +29,7 @@ function(pool_lcm_tools_setup)
   target_link_libraries(pool-lcm-subscribe PRIVATE pool_lcm_tools)
 
   add_executable(pool-bench-shot-server ${dir}/bench_shot_server.c)
-  target_link_libraries(pool-bench-shot-server PRIVATE pool_lcm_tools)
+  target_link_libraries(pool-bench-shot-server PRIVATE pool_lcm_tools pool_bench_util)
 
   install(TARGETS pool-shot-server pool-lcm-subscribe RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   install(PROGRAMS ${CMAKE_CURRENT_SOURCE_DIR}/pool_lcm_subscribe.py DESTINATION ${CMAKE_INSTALL_BINDIR})

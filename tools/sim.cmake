@@ -3,6 +3,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(JANSSON REQUIRED IMPORTED_TARGET jansson)
 
 file(GLOB POOL_SCENARIO_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/common/*.c)
+# bench_util.c is pool_bench_util (bench_util.cmake): benchmarks link it without jansson.
+list(REMOVE_ITEM POOL_SCENARIO_SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/common/bench_util.c)
 add_library(pool_scenario STATIC ${POOL_SCENARIO_SOURCES})
 target_include_directories(pool_scenario PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/common)
 target_link_libraries(pool_scenario PUBLIC pool PkgConfig::JANSSON m)

@@ -13,11 +13,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/utsname.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <lcm/lcm.h>
 
+#include "bench_util.h"
 #include "lcm_convert.h"
 
 static const char usage_text[] =
@@ -39,13 +39,6 @@ typedef struct bench {
 	long seen_size;
 	double last_answer; // monotonic s
 } bench;
-
-static double now_s(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int64_t be64(const unsigned char *p)
 {
@@ -77,14 +70,14 @@ static void on_shot(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 	if (!empty_error) {
 		b->errors++;
 	}
-	b->last_answer = now_s();
+	b->last_answer = pool_bench_now_s();
 }
 
 static void pump(bench *b, double until)
 {
 	struct pollfd pfd = {.fd = lcm_get_fileno(b->lcm), .events = POLLIN};
 	for (;;) {
-		double left = until - now_s();
+		double left = until - pool_bench_now_s();
 		int ms = left > 0 ? (int)ceil(left * 1e3) : 0;
 		int ready = poll(&pfd, 1, ms);
 		if (ready > 0) {
@@ -92,7 +85,7 @@ static void pump(bench *b, double until)
 		} else if (ready == 0 || (ready < 0 && errno != EINTR)) {
 			return;
 		}
-		if (now_s() >= until) {
+		if (pool_bench_now_s() >= until) {
 			// Drain what is already there without waiting.
 			while (poll(&pfd, 1, 0) > 0) {
 				lcm_handle(b->lcm);
@@ -122,7 +115,7 @@ static bool burst(bench *b, double rate, double duration, double slack, double *
 	b->sent = 0;
 	b->answered = 0;
 	b->errors = 0;
-	double start = now_s();
+	double start = pool_bench_now_s();
 	pool_lcm_shot_request_t request = {.scenario_json = b->scenario_json};
 	for (long i = 0; i < n; ++i) {
 		pump(b, start + (double)i / rate);
@@ -131,32 +124,26 @@ static bool burst(bench *b, double rate, double duration, double slack, double *
 		b->sent = i + 1;
 		pool_lcm_shot_request_t_publish(b->lcm, POOL_LCM_CHANNEL_SHOT_REQUEST, &request);
 	}
-	double last_send = now_s();
+	double last_send = pool_bench_now_s();
 	// Wait until everything is answered or clearly late.
-	while (b->answered < n && now_s() < last_send + slack + 1.0) {
-		pump(b, now_s() + 0.01);
+	while (b->answered < n && pool_bench_now_s() < last_send + slack + 1.0) {
+		pump(b, pool_bench_now_s() + 0.01);
 	}
 	bool ok = b->answered == n && b->errors == 0 && b->last_answer <= last_send + slack;
 	*throughput = (double)b->answered / (b->last_answer - start);
 	if (!ok) {
 		// Let the server work off its backlog so the next burst starts clean.
-		double quiet_since = now_s();
+		double quiet_since = pool_bench_now_s();
 		long before = b->answered;
-		while (now_s() - quiet_since < 1.0) {
-			pump(b, now_s() + 0.1);
+		while (pool_bench_now_s() - quiet_since < 1.0) {
+			pump(b, pool_bench_now_s() + 0.1);
 			if (b->answered != before) {
 				before = b->answered;
-				quiet_since = now_s();
+				quiet_since = pool_bench_now_s();
 			}
 		}
 	}
 	return ok;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
 }
 
 static char *read_file(const char *path)
@@ -190,26 +177,11 @@ static char *read_file(const char *path)
 
 static void print_machine(void)
 {
-	char model[256] = "unknown CPU";
-	FILE *f = fopen("/proc/cpuinfo", "r");
-	if (f) {
-		char line[512];
-		while (fgets(line, sizeof line, f)) {
-			if (strncmp(line, "model name", 10) == 0) {
-				char *colon = strchr(line, ':');
-				if (colon) {
-					snprintf(model, sizeof model, "%s", colon + 2);
-					model[strcspn(model, "\n")] = '\0';
-				}
-				break;
-			}
-		}
-		fclose(f);
-	}
+	char model[256];
 	struct utsname u;
 	uname(&u);
-	printf("machine: %s, %ld CPUs online, %s %s %s\n", model, sysconf(_SC_NPROCESSORS_ONLN),
-	       u.sysname, u.release, u.machine);
+	printf("machine: %s, %ld CPUs online, %s %s %s\n", pool_bench_cpu_model(model, sizeof model),
+	       pool_bench_cpus_online(), u.sysname, u.release, u.machine);
 }
 
 int main(int argc, char **argv)
@@ -314,12 +286,10 @@ int main(int argc, char **argv)
 		       r + 1, name ? name : scenario_path, good, good_tp, failing);
 		fflush(stdout);
 	}
-	qsort(sustained, (size_t)runs, sizeof *sustained, cmp_double);
-	double median = runs % 2 ? sustained[runs / 2]
-	                         : 0.5 * (sustained[runs / 2 - 1] + sustained[runs / 2]);
+	pool_bench_summary rate = pool_bench_summarise(sustained, (size_t)runs);
 	printf("%s: sustained request rate, no request lost: median %.0f /s, min %.0f /s over %d runs "
 	       "(%.1f s bursts, answers within %.2f s)\n",
-	       name ? name : scenario_path, median, sustained[0], runs, duration, slack);
+	       name ? name : scenario_path, rate.median, rate.min, runs, duration, slack);
 	print_machine();
 	lcm_unsubscribe(b.lcm, sub);
 	lcm_destroy(b.lcm);
