@@ -15,6 +15,8 @@
 #include <pool/quartic.h>
 
 #include "bench_quartic_ref.h"
+// libpool-internal: the fast algebraic path alone, to report how often it declines (fallback).
+#include "../libpool/src/quartic_fast.h"
 
 #define BQ_MAX_RUNS 100
 
@@ -341,6 +343,16 @@ int main(int argc, char **argv) {
 	}
 	bq_timing tw = bq_summarise(win_ns, o.runs);
 	printf("%-11s %-34s %11.1f %11.1f\n\n", names[1], "pool_quartic_smallest_root_in[0,10]", tw.median, tw.min);
+	// How often pool_quartic_real_roots's algebraic path declines and the isolation solver runs.
+	for (int s = 0; s < 2; ++s) {
+		long declined = 0;
+		double r[4];
+		for (long i = 0; i < o.count; ++i)
+			declined += pool_quartic_fast_real_roots(sets[s] + 5 * i, r) < 0;
+		printf("%-11s fast path declined (isolation solver used): %ld of %ld (%.2f%%)\n", names[s], declined, o.count,
+		       100.0 * (double)declined / (double)o.count);
+	}
+	printf("\n");
 
 	if (o.ref > 0) {
 		printf("failures against the long-double reference (first %ld quartics of each set; a root fails\n"

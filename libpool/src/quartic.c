@@ -17,6 +17,7 @@
 #include <stdbool.h>
 
 #include "pool/quartic.h"
+#include "quartic_fast.h"
 
 #define POOL_Q_U 0x1p-53
 // Multiple of u * sum |a_k x^k| below which p(x) at a critical point counts as zero: covers
@@ -503,8 +504,14 @@ static double pool_q_unscale(double y, int e) {
 }
 
 int pool_quartic_real_roots(const double c[5], double roots[4]) {
+	if (!c || !roots)
+		return 0;
+	// The verified algebraic path first; it declines (-1) whatever it cannot answer for sure.
+	int fast = pool_quartic_fast_real_roots(c, roots);
+	if (fast >= 0)
+		return fast;
 	pool_q_poly p;
-	if (!c || !roots || !pool_q_prepare(c, &p))
+	if (!pool_q_prepare(c, &p))
 		return 0;
 	double y[4];
 	pool_q_p pp = {p.b, p.n, p.safe};
