@@ -8,6 +8,8 @@
 #include <cstring>
 #include <mutex>
 
+#include "engine_state.h"
+
 namespace pool_ode {
 
 namespace {
@@ -103,11 +105,14 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	const double R = params_.ball_radius;
 	const double rc = settings_.capsule_radius > 0.0 ? settings_.capsule_radius : R;
 	settings_.capsule_radius = rc;
-	const char *geometry_error = nullptr;
-	if (!make_table_geometry(scenario.def.table, R, rc, &table_, &geometry_error)) {
-		*error = geometry_error;
+	if (!(std::fabs(scenario.def.table.cushion_height - R) < R)) {
+		*error = "table.cushion_height: the ODE model needs a nose a ball on the cloth can "
+		         "touch (0 < h < 2R)";
 		return false;
 	}
+	// Every stretch of positive length is a capsule; a closed side pocket still splits the long
+	// rails into two capsules meeting at L/2.
+	table_ = pool_plugin::make_table_geometry(scenario.def.table, R, {rc, 0.0, true});
 	pool_vec3 strike_vel = {0, 0, 0}, strike_omega = {0, 0, 0};
 	if (scenario.has_strike) {
 		pool_error e;
@@ -184,10 +189,6 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	}
 
 	const size_t n = balls_.size(), ns = rails_.size();
-	touch_ball_.assign(n * n, 0);
-	seen_ball_.assign(n * n, 0);
-	touch_rail_.assign(n * ns, 0);
-	seen_rail_.assign(n * ns, 0);
 	impact_.assign(n, 0);
 	// Contacts that already exist at t = 0 (a frozen rack) are not collisions.
 	for (size_t i = 0; i < n; ++i) {
@@ -198,24 +199,20 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 			                     (pi[1] - pj[1]) * (pi[1] - pj[1]) +
 			                     (pi[2] - pj[2]) * (pi[2] - pj[2]));
 			if (d - 2.0 * R <= settings_.release_gap)
-				touch_ball_[i * n + j] = 1;
+				ball_contacts_.set_touching(i, j);
 		}
 		for (size_t s = 0; s < ns; ++s) {
 			double p[3] = {pi[0], pi[1], pi[2]};
-			if (distance_to_axis(table_.segments[s], p) - (R + rc) <= settings_.release_gap)
-				touch_rail_[i * ns + s] = 1;
+			if (pool_plugin::distance_to_axis(table_.segments[s], p) - (R + rc) <=
+			    settings_.release_gap)
+				rail_contacts_.set_touching(i, s);
 		}
 	}
 	return true;
 }
 
 void Engine::report(int32_t type, int32_t a, int32_t b, double t) {
-	pool_engine_event e;
-	e.t = t;
-	e.type = type;
-	e.ball_a = a;
-	e.ball_b = b;
-	events_.push_back(e);
+	events_.push_back(pool_plugin::make_event(type, a, b, t));
 }
 
 void Engine::near(dGeomID g1, dGeomID g2) {
@@ -232,23 +229,15 @@ void Engine::near(dGeomID g1, dGeomID g2) {
 		size_t i = size_t(t1 - 1), j = size_t(t2 - 1);
 		if (i > j)
 			std::swap(i, j);
-		const size_t k = i * balls_.size() + j;
-		seen_ball_[k] = 1;
-		if (!touch_ball_[k]) {
-			touch_ball_[k] = 1;
+		if (ball_contacts_.see(i, j))
 			report(POOL_ENGINE_EVENT_BALL_BALL, balls_[i].id, balls_[j].id, t);
-		}
 		mu = params_.mu_ball;
 		e = params_.e_ball;
 	} else {
 		const size_t i = size_t((t1 > 0 ? t1 : t2) - 1);
 		const size_t s = size_t(-(t1 > 0 ? t2 : t1) - 1);
-		const size_t k = i * rails_.size() + s;
-		seen_rail_[k] = 1;
-		if (!touch_rail_[k]) {
-			touch_rail_[k] = 1;
+		if (rail_contacts_.see(i, s))
 			report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[i].id, -1, t);
-		}
 		mu = params_.mu_cushion;
 		e = params_.e_cushion;
 	}
@@ -354,8 +343,8 @@ void Engine::add_cloth_contact(size_t i) {
 }
 
 bool Engine::step() {
-	std::fill(seen_ball_.begin(), seen_ball_.end(), 0);
-	std::fill(seen_rail_.begin(), seen_rail_.end(), 0);
+	ball_contacts_.start_pass();
+	rail_contacts_.start_pass();
 	std::fill(impact_.begin(), impact_.end(), 0);
 	dSpaceCollide(space_, this, &near_callback);
 	for (size_t i = 0; i < balls_.size(); ++i) {
@@ -394,7 +383,7 @@ bool Engine::step() {
 
 void Engine::after_step() {
 	const double R = params_.ball_radius, t = now();
-	const size_t n = balls_.size(), ns = rails_.size();
+	const size_t n = balls_.size();
 	for (size_t i = 0; i < n; ++i) {
 		Ball &b = balls_[i];
 		if (!b.active)
@@ -406,8 +395,8 @@ void Engine::after_step() {
 			dBodySetLinearVel(b.body, v[0], v[1], 0.0);
 		}
 		const dReal *p = dBodyGetPosition(b.body);
-		pool_pocket pocket = pocket_entered(table_, p[0], p[1]);
-		bool off = pocket == POOL_POCKET_NONE && (outside_table(table_, p[0], p[1]) || p[2] < 0.0);
+		pool_pocket pocket = pool_plugin::pocket_entered(table_, p[0], p[1]);
+		bool off = pocket == POOL_POCKET_NONE && (pool_plugin::outside_table(table_, p[0], p[1]) || p[2] < 0.0);
 		if (pocket != POOL_POCKET_NONE || off) {
 			b.active = false;
 			b.state = pocket != POOL_POCKET_NONE ? POOL_MOTION_POCKETED : POOL_MOTION_OFF_TABLE;
@@ -424,29 +413,19 @@ void Engine::after_step() {
 	}
 	// Separations: a pair not found touching in this step's collision pass counts as apart
 	// once its gap exceeds release_gap (or a ball left the table).
-	for (size_t i = 0; i < n; ++i) {
+	ball_contacts_.release([&](size_t i, size_t j) {
+		const dReal *pi = dBodyGetPosition(balls_[i].body), *pj = dBodyGetPosition(balls_[j].body);
+		double d = std::sqrt((pi[0] - pj[0]) * (pi[0] - pj[0]) + (pi[1] - pj[1]) * (pi[1] - pj[1]) +
+		                     (pi[2] - pj[2]) * (pi[2] - pj[2]));
+		return !balls_[i].active || !balls_[j].active || d - 2.0 * R > settings_.release_gap;
+	});
+	rail_contacts_.release([&](size_t i, size_t s) {
 		const dReal *pi = dBodyGetPosition(balls_[i].body);
-		for (size_t j = i + 1; j < n; ++j) {
-			const size_t k = i * n + j;
-			if (!touch_ball_[k] || seen_ball_[k])
-				continue;
-			const dReal *pj = dBodyGetPosition(balls_[j].body);
-			double d = std::sqrt((pi[0] - pj[0]) * (pi[0] - pj[0]) +
-			                     (pi[1] - pj[1]) * (pi[1] - pj[1]) +
-			                     (pi[2] - pj[2]) * (pi[2] - pj[2]));
-			if (!balls_[i].active || !balls_[j].active || d - 2.0 * R > settings_.release_gap)
-				touch_ball_[k] = 0;
-		}
-		for (size_t s = 0; s < ns; ++s) {
-			const size_t k = i * ns + s;
-			if (!touch_rail_[k] || seen_rail_[k])
-				continue;
-			double p[3] = {pi[0], pi[1], pi[2]};
-			double gap = distance_to_axis(table_.segments[s], p) - (R + settings_.capsule_radius);
-			if (!balls_[i].active || gap > settings_.release_gap)
-				touch_rail_[k] = 0;
-		}
-	}
+		double p[3] = {pi[0], pi[1], pi[2]};
+		double gap = pool_plugin::distance_to_axis(table_.segments[s], p) -
+		             (R + settings_.capsule_radius);
+		return !balls_[i].active || gap > settings_.release_gap;
+	});
 }
 
 // Motion state of a ball on the table and its slide/roll/stop transitions.
@@ -464,14 +443,11 @@ void Engine::classify(size_t i, bool events) {
 	}
 	const double slip = std::hypot(v[0] - R * w[1], v[1] + R * w[0]);
 	const double speed = std::hypot(v[0], v[1]);
-	if (b.rolling) {
-		if (slip > settings_.roll_off_slip)
-			b.rolling = false;
-	} else if (slip < settings_.roll_on_slip) {
-		b.rolling = true;
-		if (events && speed > settings_.rest_speed)
-			report(POOL_ENGINE_EVENT_SLIDE_ROLL, b.id, -1, t);
-	}
+	const bool was_rolling = b.rolling;
+	b.rolling = pool_plugin::roll_hysteresis(was_rolling, slip, settings_.roll_on_slip,
+	                                         settings_.roll_off_slip);
+	if (events && b.rolling && !was_rolling && speed > settings_.rest_speed)
+		report(POOL_ENGINE_EVENT_SLIDE_ROLL, b.id, -1, t);
 	const bool moving = !b.rolling || speed > settings_.rest_speed;
 	if (events && b.moving && !moving)
 		report(POOL_ENGINE_EVENT_ROLL_STOP, b.id, -1, t);
@@ -547,16 +523,11 @@ int Engine::balls(pool_engine_ball *out, int capacity) const {
 }
 
 int Engine::events(pool_engine_event *out, int capacity) const {
-	const int n = int(std::min<size_t>(events_.size(), size_t(INT32_MAX)));
-	for (int i = 0; i < n && i < capacity && out; ++i)
-		out[i] = events_[size_t(i)];
-	return n;
+	return pool_plugin::copy_out(events_, out, capacity);
 }
 
 void Engine::stats(pool_engine_stats *out) const {
-	out->steps = steps_;
-	out->max_penetration = max_penetration_;
-	out->sim_time = now();
+	pool_plugin::fill_stats(steps_, dt_, max_penetration_, out);
 }
 
 } // namespace pool_ode

@@ -9,12 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "ode_table.h"
+#include "contact_tracker.h"
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
 #include "scenario.h"
+#include "table_geometry.h"
 
 namespace pool_ode {
+
+using pool_plugin::RailSegment;
+using pool_plugin::TableGeometry;
 
 /// Tuning of the model; every value is explained where it is set (ode_engine.cpp).
 struct Settings {
@@ -89,10 +93,8 @@ private:
 	dJointGroupID contacts_ = nullptr;
 	std::vector<Ball> balls_;
 	std::vector<dGeomID> rails_;
-	std::vector<uint8_t> touch_ball_;     ///< n*n: pair currently in contact
-	std::vector<uint8_t> touch_rail_;     ///< n*segments: ball touching that cushion
-	std::vector<uint8_t> seen_ball_;      ///< contacts found in this step's collision pass
-	std::vector<uint8_t> seen_rail_;
+	pool_plugin::ContactTracker ball_contacts_; ///< ball pairs (i < j) in contact
+	pool_plugin::ContactTracker rail_contacts_; ///< (ball, segment) pairs in contact
 	std::vector<uint8_t> impact_;         ///< per ball: in an impact in this step
 	std::vector<pool_engine_event> events_;
 	int64_t steps_ = 0;
