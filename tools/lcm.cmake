@@ -18,7 +18,7 @@ function(pool_lcm_tools_setup)
   endif()
   set(dir ${CMAKE_CURRENT_SOURCE_DIR}/lcm)
 
-  add_library(pool_lcm_tools STATIC ${dir}/lcm_convert.c ${dir}/sim_publish.c)
+  add_library(pool_lcm_tools STATIC ${dir}/lcm_convert.c ${dir}/lcm_service.c ${dir}/sim_publish.c)
   target_include_directories(pool_lcm_tools PUBLIC ${dir})
   target_link_libraries(pool_lcm_tools PUBLIC pool_lcm_c pool_scenario pool m)
 

@@ -3,8 +3,6 @@
 // pool_scenario_setup), so a steady stream of shots does not allocate per request.
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
-#include <poll.h>
-#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +11,7 @@
 #include <lcm/lcm.h>
 
 #include "lcm_convert.h"
+#include "lcm_service.h"
 #include "scenario.h"
 
 #define EXIT_BAD_INPUT 2
@@ -31,14 +30,6 @@ static const char usage_text[] =
 	"                      udpm://239.255.76.67:7667?ttl=0)\n"
 	"  --max-requests N    exit after answering N requests (0 = serve until a signal)\n"
 	"  -h, --help          show this help\n";
-
-static volatile sig_atomic_t pool_stop_requested = 0;
-
-static void pool_on_signal(int signal_number)
-{
-	(void)signal_number;
-	pool_stop_requested = 1;
-}
 
 /// What the handler needs between requests.
 typedef struct server_state {
@@ -170,19 +161,14 @@ int main(int argc, char **argv)
 		}
 	}
 
-	struct sigaction action;
-	memset(&action, 0, sizeof action);
-	action.sa_handler = pool_on_signal;
-	sigemptyset(&action.sa_mask);
-	sigaction(SIGINT, &action, NULL);
-	sigaction(SIGTERM, &action, NULL);
+	pool_lcm_catch_stop_signals();
 
 	server_state s;
 	memset(&s, 0, sizeof s);
-	const char *resolved = pool_lcm_resolve_url(url);
-	s.lcm = lcm_create(resolved);
+	char err[256];
+	s.lcm = pool_lcm_open(url, err, sizeof err);
 	if (s.lcm == NULL) {
-		fprintf(stderr, "pool-shot-server: --lcm-url: cannot open LCM on '%s'\n", resolved);
+		fprintf(stderr, "pool-shot-server: %s\n", err);
 		return EXIT_BAD_INPUT;
 	}
 	lcm_subscription_t *sub = lcm_subscribe(s.lcm, POOL_LCM_CHANNEL_SHOT_REQUEST, on_request, &s);
@@ -193,18 +179,14 @@ int main(int argc, char **argv)
 	}
 	// Bursts of requests wait in liblcm's queue (default 30) instead of being dropped.
 	lcm_subscription_set_queue_capacity(sub, 100000);
-	fprintf(stderr, "pool-shot-server: ready on %s, channel %s\n", resolved,
+	fprintf(stderr, "pool-shot-server: ready on %s, channel %s\n", pool_lcm_resolve_url(url),
 	        POOL_LCM_CHANNEL_SHOT_REQUEST);
 
 	int status = 0;
-	struct pollfd pfd = {.fd = lcm_get_fileno(s.lcm), .events = POLLIN};
-	while (!pool_stop_requested && (max_requests == 0 || s.answered < max_requests)) {
+	while (!pool_lcm_stop_requested() && (max_requests == 0 || s.answered < max_requests)) {
 		// A timeout so a signal that arrives between the check and poll stops us within 200 ms.
-		int ready = poll(&pfd, 1, 200);
+		int ready = pool_lcm_wait(s.lcm, 200);
 		if (ready < 0) {
-			if (errno == EINTR) {
-				continue;
-			}
 			perror("pool-shot-server: poll");
 			status = EXIT_INTERNAL;
 			break;

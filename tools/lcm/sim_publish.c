@@ -13,6 +13,7 @@
 #include <lcm/lcm.h>
 
 #include "lcm_convert.h"
+#include "lcm_service.h"
 
 struct pool_lcm_sim_publisher {
 	lcm_t *lcm;
@@ -44,10 +45,8 @@ pool_lcm_sim_publisher *pool_lcm_sim_publisher_create(const char *url, double pl
 		snprintf(err, err_size, "out of memory");
 		return NULL;
 	}
-	const char *resolved = pool_lcm_resolve_url(url);
-	p->lcm = lcm_create(resolved);
+	p->lcm = pool_lcm_open(url, err, err_size);
 	if (p->lcm == NULL) {
-		snprintf(err, err_size, "--lcm-url: cannot open LCM on '%s'", resolved);
 		free(p);
 		return NULL;
 	}

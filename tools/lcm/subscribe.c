@@ -1,10 +1,7 @@
 // pool-lcm-subscribe: an example LCM client that prints every event (POOL_EVENT) and every shot
 // (POOL_SHOT) as it arrives, one line each. Also a handy way to watch pool-shot-server.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
-#include <poll.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +10,7 @@
 #include <lcm/lcm.h>
 
 #include "lcm_convert.h"
+#include "lcm_service.h"
 
 static const char usage_text[] =
 	"usage: pool-lcm-subscribe [--lcm-url URL] [--count N] [--timeout S] [--states] [--help]\n"
@@ -27,14 +25,6 @@ static const char usage_text[] =
 	"  --timeout S    exit with status 1 when no message arrived for S seconds\n"
 	"  --states       also print playback frames on POOL_STATE (state t=T balls=N)\n"
 	"  -h, --help     show this help\n";
-
-static volatile sig_atomic_t stop_requested = 0;
-
-static void on_signal(int signal_number)
-{
-	(void)signal_number;
-	stop_requested = 1;
-}
 
 static long shots_seen = 0;
 
@@ -116,17 +106,12 @@ int main(int argc, char **argv)
 			return 2;
 		}
 	}
-	struct sigaction action;
-	memset(&action, 0, sizeof action);
-	action.sa_handler = on_signal;
-	sigemptyset(&action.sa_mask);
-	sigaction(SIGINT, &action, NULL);
-	sigaction(SIGTERM, &action, NULL);
+	pool_lcm_catch_stop_signals();
 
-	const char *resolved = pool_lcm_resolve_url(url);
-	lcm_t *lcm = lcm_create(resolved);
+	char err[256];
+	lcm_t *lcm = pool_lcm_open(url, err, sizeof err);
 	if (lcm == NULL) {
-		fprintf(stderr, "pool-lcm-subscribe: --lcm-url: cannot open LCM on '%s'\n", resolved);
+		fprintf(stderr, "pool-lcm-subscribe: %s\n", err);
 		return 2;
 	}
 	pool_lcm_event_t_subscription_t *se = pool_lcm_event_t_subscribe(lcm, POOL_LCM_CHANNEL_EVENT,
@@ -141,14 +126,13 @@ int main(int argc, char **argv)
 	pool_lcm_shot_t_subscription_set_queue_capacity(ss, 10000);
 
 	int status = 0;
-	struct pollfd pfd = {.fd = lcm_get_fileno(lcm), .events = POLLIN};
 	struct timespec last;
 	clock_gettime(CLOCK_MONOTONIC, &last);
-	while (!stop_requested && (count == 0 || shots_seen < count)) {
-		int ready = poll(&pfd, 1, 100);
+	while (!pool_lcm_stop_requested() && (count == 0 || shots_seen < count)) {
+		int ready = pool_lcm_wait(lcm, 100);
 		struct timespec now;
 		clock_gettime(CLOCK_MONOTONIC, &now);
-		if (ready < 0 && errno != EINTR) {
+		if (ready < 0) {
 			perror("pool-lcm-subscribe: poll");
 			status = 1;
 			break;
