@@ -7,6 +7,8 @@
 #include <cmath>
 #include <mutex>
 
+#include "engine_state.h"
+
 namespace pool_bullet {
 namespace {
 
@@ -182,8 +184,25 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 		*error = "params.ball_mass: must be > 0";
 		return false;
 	}
-	if (!make_table_geometry(scenario.def.table, R, settings_.capsule_radius, &table_, error))
+	const pool_table_def &table = scenario.def.table;
+	const double h = table.cushion_height;
+	if (!(std::isfinite(R) && R > 0.0)) {
+		*error = "params.ball_radius: must be > 0";
 		return false;
+	}
+	if (!(std::isfinite(h) && h > 0.0 && h < 2.0 * R)) {
+		*error = "table.cushion_height: the Bullet model needs 0 < h < 2R (a nose a ball on the "
+		         "cloth can touch)";
+		return false;
+	}
+	if (!(std::isfinite(table.length) && std::isfinite(table.width) && table.length > 2.0 * R &&
+	      table.width > 2.0 * R)) {
+		*error = "table.length: the table must be larger than a ball";
+		return false;
+	}
+	// A capsule shorter than a micrometre is no cushion (the mouths meet there); a closed side
+	// pocket leaves one capsule along the whole long rail.
+	table_ = pool_plugin::make_table_geometry(table, R, {settings_.capsule_radius, 1e-6, false});
 	install_hooks();
 
 	config_ = std::make_unique<btDefaultCollisionConfiguration>();
@@ -303,8 +322,6 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	}
 
 	const size_t ns = table_.segments.size();
-	touch_rail_.assign(size_t(n) * ns, 0);
-	seen_rail_.assign(size_t(n) * ns, 0);
 	impact_.assign(size_t(n), 0);
 	// Pairs that already touch at t = 0 (frozen racks) are in contact, not new contacts.
 	const double touch = 2.0 * R;
@@ -312,12 +329,12 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 		const btVector3 pi = balls_[size_t(i)]->body->getCenterOfMassPosition();
 		for (int j = i + 1; j < n; ++j)
 			if ((pi - balls_[size_t(j)]->body->getCenterOfMassPosition()).length() <= touch)
-				touch_ball_.insert({size_t(i), size_t(j)});
+				ball_contacts_.set_touching(size_t(i), size_t(j));
 		const double p[3] = {pi.x(), pi.y(), pi.z()};
 		for (size_t k = 0; k < ns; ++k)
-			if (distance_to_axis(table_.segments[k], p) <=
+			if (pool_plugin::distance_to_axis(table_.segments[k], p) <=
 			    R + settings_.capsule_radius + settings_.release_gap)
-				touch_rail_[size_t(i) * ns + k] = 1;
+				rail_contacts_.set_touching(size_t(i), k);
 	}
 	for (auto &b : balls_)
 		classify(*b, false, 0.0);
@@ -442,12 +459,7 @@ void Engine::before_solve() {
 }
 
 void Engine::report(int32_t type, int32_t a, int32_t b, double t) {
-	pool_engine_event e{};
-	e.t = t;
-	e.type = type;
-	e.ball_a = a;
-	e.ball_b = b;
-	pending_.push_back(e);
+	pending_.push_back(pool_plugin::make_event(type, a, b, t));
 }
 
 void Engine::remove_ball(Ball &ball, int32_t state) {
@@ -465,9 +477,8 @@ void Engine::remove_ball(Ball &ball, int32_t state) {
 }
 
 void Engine::update_contacts(double t_detect) {
-	const size_t n = balls_.size(), ns = table_.segments.size();
-	seen_ball_.clear();
-	std::fill(seen_rail_.begin(), seen_rail_.end(), 0);
+	ball_contacts_.start_pass();
+	rail_contacts_.start_pass();
 	const int count = dispatcher_->getNumManifolds();
 	for (int k = 0; k < count; ++k) {
 		const btPersistentManifold *mf = dispatcher_->getManifoldByIndexInternal(k);
@@ -480,50 +491,36 @@ void Engine::update_contacts(double t_detect) {
 		const Material *a = material_of(mf->getBody0()), *b = material_of(mf->getBody1());
 		if (!a || !b || a->engine != this || b->engine != this)
 			continue;
+		// A contact begins when a manifold first holds a touching point (the same step's events
+		// are sorted in after_step, so the manifolds' order does not matter).
 		if (a->kind == kBall && b->kind == kBall) {
 			const size_t i = size_t(std::min(a->index, b->index)), j = size_t(std::max(a->index, b->index));
-			seen_ball_.push_back({i, j});
+			if (ball_contacts_.see(i, j))
+				report(POOL_ENGINE_EVENT_BALL_BALL, balls_[i]->id, balls_[j]->id, t_detect);
 		} else if (a->kind == kBall && b->kind == kCushion) {
-			seen_rail_[size_t(a->index) * ns + size_t(b->index)] = 1;
+			if (rail_contacts_.see(size_t(a->index), size_t(b->index)))
+				report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[size_t(a->index)]->id, -1, t_detect);
 		} else if (b->kind == kBall && a->kind == kCushion) {
-			seen_rail_[size_t(b->index) * ns + size_t(a->index)] = 1;
+			if (rail_contacts_.see(size_t(b->index), size_t(a->index)))
+				report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[size_t(b->index)]->id, -1, t_detect);
 		}
 	}
-	// A contact begins when a manifold first holds a touching point; it ends only once the gap
-	// exceeds release_gap, so a resting contact that flickers in the manifold is one contact.
+	// A contact ends only once the gap exceeds release_gap, so a resting contact that flickers
+	// in the manifold is one contact.
 	const double R = params_.ball_radius;
-	std::sort(seen_ball_.begin(), seen_ball_.end());
-	seen_ball_.erase(std::unique(seen_ball_.begin(), seen_ball_.end()), seen_ball_.end());
-	for (const auto &pair : seen_ball_)
-		if (touch_ball_.insert(pair).second)
-			report(POOL_ENGINE_EVENT_BALL_BALL, balls_[pair.first]->id, balls_[pair.second]->id, t_detect);
-	for (auto it = touch_ball_.begin(); it != touch_ball_.end();) {
-		const Ball &bi = *balls_[it->first], &bj = *balls_[it->second];
-		const bool seen = std::binary_search(seen_ball_.begin(), seen_ball_.end(), *it);
-		if (!seen && (!bi.active || !bj.active ||
-		              (bi.body->getCenterOfMassPosition() - bj.body->getCenterOfMassPosition()).length() >
-		                  2.0 * R + settings_.release_gap))
-			it = touch_ball_.erase(it);
-		else
-			++it;
-	}
-	for (size_t i = 0; i < n; ++i) {
+	ball_contacts_.release([&](size_t i, size_t j) {
+		const Ball &bi = *balls_[i], &bj = *balls_[j];
+		return !bi.active || !bj.active ||
+		       (bi.body->getCenterOfMassPosition() - bj.body->getCenterOfMassPosition()).length() >
+		           2.0 * R + settings_.release_gap;
+	});
+	rail_contacts_.release([&](size_t i, size_t k) {
 		const Ball &bi = *balls_[i];
 		const btVector3 pi = bi.body->getCenterOfMassPosition();
 		const double p[3] = {pi.x(), pi.y(), pi.z()};
-		for (size_t k = 0; k < ns; ++k) {
-			uint8_t &touch = touch_rail_[i * ns + k];
-			if (seen_rail_[i * ns + k]) {
-				if (!touch)
-					report(POOL_ENGINE_EVENT_BALL_CUSHION, bi.id, -1, t_detect);
-				touch = 1;
-			} else if (touch) {
-				if (!bi.active || distance_to_axis(table_.segments[k], p) >
-				                      R + settings_.capsule_radius + settings_.release_gap)
-					touch = 0;
-			}
-		}
-	}
+		return !bi.active || pool_plugin::distance_to_axis(table_.segments[k], p) >
+		                         R + settings_.capsule_radius + settings_.release_gap;
+	});
 }
 
 void Engine::measure_penetration() {
@@ -543,7 +540,7 @@ void Engine::measure_penetration() {
 		}
 		const double p[3] = {pi.x(), pi.y(), pi.z()};
 		for (const RailSegment &s : table_.segments)
-			max_penetration_ = std::max(max_penetration_, R + rc - distance_to_axis(s, p));
+			max_penetration_ = std::max(max_penetration_, R + rc - pool_plugin::distance_to_axis(s, p));
 	}
 }
 
@@ -563,10 +560,8 @@ void Engine::classify(Ball &ball, bool report_events, double t) {
 	const double roll = R * std::hypot(w.x(), w.y());
 	const bool moving = speed >= settings_.rest_speed || roll >= settings_.rest_speed;
 	const bool was_rolling = ball.rolling;
-	if (ball.rolling && slip > settings_.roll_off_slip)
-		ball.rolling = false;
-	else if (!ball.rolling && slip < settings_.roll_on_slip)
-		ball.rolling = true;
+	ball.rolling = pool_plugin::roll_hysteresis(was_rolling, slip, settings_.roll_on_slip,
+	                                            settings_.roll_off_slip);
 	if (!moving)
 		ball.state = std::fabs(w.z()) >= settings_.rest_spin ? POOL_MOTION_SPINNING : POOL_MOTION_STATIONARY;
 	else
@@ -607,10 +602,10 @@ bool Engine::after_step() {
 		}
 		// Thesis pocket model: a ball whose centre reaches the touch distance of a rail line
 		// inside a mouth is pocketed.
-		if (pocket_entered(table_, p.x(), p.y()) != POOL_POCKET_NONE) {
+		if (pool_plugin::pocket_entered(table_, p.x(), p.y()) != POOL_POCKET_NONE) {
 			report(POOL_ENGINE_EVENT_POCKET, b->id, -1, t);
 			remove_ball(*b, POOL_MOTION_POCKETED);
-		} else if (outside_table(table_, p.x(), p.y()) || p.z() < -params_.ball_radius) {
+		} else if (pool_plugin::outside_table(table_, p.x(), p.y()) || p.z() < -params_.ball_radius) {
 			remove_ball(*b, POOL_MOTION_OFF_TABLE); // tunnelled through a cushion or flew off
 		}
 	}
@@ -696,16 +691,11 @@ int Engine::balls(pool_engine_ball *out, int capacity) const {
 }
 
 int Engine::events(pool_engine_event *out, int capacity) const {
-	const int n = int(events_.size());
-	for (int i = 0; out && i < n && i < capacity; ++i)
-		out[i] = events_[size_t(i)];
-	return n;
+	return pool_plugin::copy_out(events_, out, capacity);
 }
 
 void Engine::stats(pool_engine_stats *out) const {
-	out->steps = steps_;
-	out->max_penetration = max_penetration_;
-	out->sim_time = double(steps_) * dt_;
+	pool_plugin::fill_stats(steps_, dt_, max_penetration_, out);
 }
 
 } // namespace pool_bullet

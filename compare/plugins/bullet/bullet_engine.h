@@ -8,19 +8,22 @@
 
 #include <cstdint>
 #include <memory>
-#include <set>
 #include <string>
 #include <vector>
 
-#include "bullet_table.h"
+#include "contact_tracker.h"
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
 #include "scenario.h"
+#include "table_geometry.h"
 
 static_assert(sizeof(btScalar) == sizeof(double),
               "the Bullet plugin needs BT_USE_DOUBLE_PRECISION (pkg-config bullet-float64)");
 
 namespace pool_bullet {
+
+using pool_plugin::RailSegment;
+using pool_plugin::TableGeometry;
 
 /// Tuning of the model; every value is explained where it is set (bullet_engine.cpp).
 struct Settings {
@@ -124,11 +127,9 @@ private:
 	std::vector<Material> rail_materials_;
 	std::vector<std::unique_ptr<Ball>> balls_;
 
-	std::set<std::pair<size_t, size_t>> touch_ball_;   ///< ball pairs (i < j) in contact
-	std::vector<std::pair<size_t, size_t>> seen_ball_; ///< touching pairs in this step's manifolds
-	std::vector<uint8_t> touch_rail_; ///< n*segments: ball touching that cushion
-	std::vector<uint8_t> seen_rail_;
-	std::vector<uint8_t> impact_;     ///< per ball: hits a ball or cushion in this step
+	pool_plugin::ContactTracker ball_contacts_; ///< ball pairs (i < j) in contact
+	pool_plugin::ContactTracker rail_contacts_; ///< (ball, segment) pairs in contact
+	std::vector<uint8_t> impact_; ///< per ball: hits a ball or cushion in this step
 	std::vector<pool_engine_event> events_;
 	std::vector<pool_engine_event> pending_; ///< this step's events, sorted before publishing
 	int64_t steps_ = 0;
