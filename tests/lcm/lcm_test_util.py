@@ -1,5 +1,6 @@
 """Helpers shared by the LCM end-to-end tests (run inside netns_run.sh)."""
 import argparse
+import importlib.util
 import json
 import os
 import queue
@@ -10,8 +11,11 @@ import threading
 import time
 
 URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
-STATE_NAMES = ["stationary", "spinning", "sliding", "rolling", "airborne", "linked",
-               "pocketed", "off_table"]
+
+# Message-to-result conversions (ball_json, event_json, shot_json) are the shipped subscriber's
+# (tools/pool_lcm_subscribe.py, given by --subscriber): parse_args loads them, so the tests check
+# the code users run rather than a copy of it.
+ball_json = event_json = shot_json = None
 
 
 def parse_args(extra=()):
@@ -27,7 +31,18 @@ def parse_args(extra=()):
     args = p.parse_args()
     sys.path.insert(0, args.types_dir)
     os.makedirs(args.work_dir, exist_ok=True)
+    load_subscriber(args.subscriber)
     return args
+
+
+def load_subscriber(path):
+    """Imports the subscriber script as a module and takes its conversion functions."""
+    global ball_json, event_json, shot_json
+    spec = importlib.util.spec_from_file_location("pool_lcm_subscribe", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    ball_json, event_json, shot_json = module.ball_json, module.event_json, module.shot_json
+    return module
 
 
 failures = []
@@ -72,21 +87,6 @@ def wait_for_line(proc, needle, timeout=10.0):
             if needle in line:
                 return lines
     raise RuntimeError("no '%s' from %s within %g s: %r" % (needle, proc.args, timeout, lines))
-
-
-def ball_json(b):
-    return {"id": b.id, "pos": list(b.pos), "vel": list(b.vel), "omega": list(b.omega),
-            "state": STATE_NAMES[b.state]}
-
-
-def event_json(e):
-    out = {"t": e.t, "type": e.type, "balls": [b.id for b in e.balls]}
-    if e.rail:
-        out["rail"] = e.rail
-    if e.pocket:
-        out["pocket"] = e.pocket
-    out["after"] = [ball_json(b) for b in e.balls]
-    return out
 
 
 def compare_result(got, want, label):

@@ -50,13 +50,6 @@ def wait_answers(ids, timeout=30):
     return by_id
 
 
-def shot_doc(s):
-    return {"events": [u.event_json(e) for e in s.events],
-            "final": [u.ball_json(b) for b in s.final_states],
-            "stats": {"events": s.num_events, "sim_time": s.sim_time,
-                      "stop_reason": s.stop_reason}}
-
-
 # Two clients, interleaved, without waiting for answers in between (ids from both clients).
 plan = []
 for round_ in range(3):
@@ -70,7 +63,7 @@ for _, rid, n in plan:
     if rid in got:
         s = got[rid]
         u.check(s.error == "", "request %d (%s): error %r" % (rid, n, s.error))
-        u.compare_result(shot_doc(s), want[n], "request %d (%s)" % (rid, n))
+        u.compare_result(u.shot_json(s), want[n], "request %d (%s)" % (rid, n))
 shot_ids = [got[rid].shot_id for _, rid, _ in plan if rid in got]
 u.check(len(set(shot_ids)) == len(shot_ids), "shot ids are not unique")
 print("%d interleaved requests from two clients answered and matched" % len(plan), flush=True)
@@ -111,7 +104,7 @@ for datagram in (b"garbage", b"", os.urandom(300), lying, encoded[:30], untermin
 request(client_b, 4243, scenarios["cut"])
 got = wait_answers([4243])
 if 4243 in got:
-    u.compare_result(shot_doc(got[4243]), want["cut"], "request after garbage")
+    u.compare_result(u.shot_json(got[4243]), want["cut"], "request after garbage")
 u.check(server.poll() is None, "server died after garbage (exit %r)" % server.poll())
 
 # Clean shutdown on SIGTERM, with the report.
