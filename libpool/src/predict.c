@@ -122,6 +122,12 @@ static double line_contact(double x0, double v, double a, double target, double 
 	double gap = sign * (target - x0); // > 0 while short of the line
 	if (gap <= POOL_TOUCH_TOLERANCE && sign * v > POOL_APPROACH_EPS)
 		return 0.0;
+	// Touching, not leaving, and pushed into the line (a ball frozen to a rail that slides along
+	// it with a curve towards it): the root at 0 has no approach speed yet, so the loop below would
+	// skip it and the ball would pass through the nose. Contact now; the event's separation floor
+	// (sim.c) sends it off.
+	if (gap <= POOL_TOUCH_TOLERANCE && sign * v >= 0.0 && sign * a > 0.0)
+		return 0.0;
 	// 0.5 a t^2 + v t + (x0 - target) = 0
 	double A = 0.5 * a, B = v, C = x0 - target;
 	double r[2];

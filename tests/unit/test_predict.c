@@ -107,12 +107,38 @@ static void test_cushion_and_pockets(void **state) {
 	assert_int_equal(pool_pocket_at(&t, POOL_RAIL_WEST, W / 2), POOL_POCKET_NONE);
 }
 
+// A ball frozen to the north rail, sliding along it (v_y = 0) with a slip that curves it into the
+// rail (a_y > 0): it is already in contact and being pushed in, so the contact is now, not never
+// (the nose would otherwise let it through). Pushed away, or moving along without a push, no contact.
+static void test_cushion_touching_pushed_in(void **state) {
+	(void)state;
+	pool_table_def t = pool_default_table_def();
+	const double h = t.cushion_height, dc = sqrt(R * R - (h - R) * (h - R));
+	pool_ball_state s = {0};
+	s.pos = pool_v3(0.5, t.width - dc, R);
+	s.vel = pool_v3(1.0, 0.0, 0.0);
+	pool_rail rail;
+	pool_pocket pocket;
+	assert_true(pool_predict_cushion(&t, R, &s, pool_v3(-1.0, 1.5, 0.0), 0.1, &rail, &pocket) == 0.0);
+	assert_int_equal(rail, POOL_RAIL_NORTH);
+	assert_int_equal(pocket, POOL_POCKET_NONE);
+	// The same at the west rail, moving along -y.
+	s.pos = pool_v3(dc, 0.6, R);
+	s.vel = pool_v3(0.0, -1.0, 0.0);
+	assert_true(pool_predict_cushion(&t, R, &s, pool_v3(-1.5, 1.0, 0.0), 0.1, &rail, &pocket) == 0.0);
+	assert_int_equal(rail, POOL_RAIL_WEST);
+	// Pushed away from the rail, or no push: no contact within the window.
+	assert_true(isinf(pool_predict_cushion(&t, R, &s, pool_v3(1.5, 1.0, 0.0), 0.1, &rail, &pocket)));
+	assert_true(isinf(pool_predict_cushion(&t, R, &s, pool_v3(0.0, 1.0, 0.0), 0.1, &rail, &pocket)));
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_linear_approach),
 		cmocka_unit_test(test_decelerating),
 		cmocka_unit_test(test_touching),
 		cmocka_unit_test(test_cushion_and_pockets),
+		cmocka_unit_test(test_cushion_touching_pushed_in),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

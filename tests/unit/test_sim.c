@@ -439,13 +439,39 @@ static void test_memory(void **state) {
 	}
 }
 
+// A ball frozen to the north rail, struck into a slide along it whose slip curves it into the rail:
+// it must never pass the nose (centre at most W - sqrt(R^2 - (h - R)^2) from the south rail).
+static void test_frozen_to_rail_curving_in(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	pool_sim *sim = make_sim(&def);
+	const double R = def.params.ball_radius, h = def.table.cushion_height, W = def.table.width;
+	const double dc = sqrt(R * R - (h - R) * (h - R));
+	pool_ball_state b = rest(0, 0.5, W - dc);
+	b.vel = pool_v3(1.0, 0.0, 0.0);
+	b.omega = pool_v3(-10.0, 0.0, 0.0); // slip u = v + R k x w has +y: friction pushes it to +y
+	assert_int_equal(pool_sim_add_ball(sim, &b, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int n;
+	const pool_event *ev = pool_sim_events(sim, &n);
+	for (int i = 0; i < n; ++i) {
+		const pool_ball_state *a = pool_sim_event_states(sim, &ev[i]);
+		if (a->motion != POOL_MOTION_POCKETED && a->pos.y > W - dc + 1e-9)
+			fail_msg("event %d (%s) at t = %g: y = %.12g beyond the nose contact line %.12g", i,
+			         pool_event_type_name(ev[i].type), ev[i].time, a->pos.y, W - dc);
+	}
+	assert_true(find(sim, POOL_EVENT_BALL_CUSHION, 0) != NULL);
+	assert_true(find(sim, POOL_EVENT_BALL_CUSHION, 0)->time < 1e-9);
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_stun_shot),       cmocka_unit_test(test_natural_roll_shot),
 		cmocka_unit_test(test_cushion_contact), cmocka_unit_test(test_pockets),
 		cmocka_unit_test(test_ball_ball_shots), cmocka_unit_test(test_frozen_break),
 		cmocka_unit_test(test_validation),      cmocka_unit_test(test_limits),
-		cmocka_unit_test(test_memory),
+		cmocka_unit_test(test_memory),          cmocka_unit_test(test_frozen_to_rail_curving_in),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
