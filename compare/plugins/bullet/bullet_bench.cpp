@@ -1,7 +1,6 @@
 // Per-step cost of the Bullet plugin: one ball (2 m/s slide) and a 16-ball break (8 m/s), each
 // run several times at dt = 1e-3 and 1e-4; prints the median and minimum microseconds per step and
 // the machine. Usage: pool-bench-bullet [PLUGIN.so] [REPEATS]
-#include <dlfcn.h>
 #include <sys/utsname.h>
 
 #include <algorithm>
@@ -16,6 +15,7 @@
 
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
+#include "selftest_support.h"
 
 namespace {
 
@@ -70,17 +70,9 @@ double run_once(const pool_engine_api *api, const std::string &json, double dt, 
 int main(int argc, char **argv) {
 	const char *path = argc > 1 && argv[1][0] ? argv[1] : POOL_BULLET_PLUGIN_PATH;
 	const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 7;
-	void *module = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-	if (!module) {
-		std::fprintf(stderr, "dlopen: %s\n", dlerror());
+	const pool_engine_api *api = pool_plugin::load_plugin(path, "bullet");
+	if (!api)
 		return 1;
-	}
-	auto entry = reinterpret_cast<pool_engine_entry_fn>(dlsym(module, POOL_ENGINE_ENTRY));
-	const pool_engine_api *api = entry ? entry() : nullptr;
-	if (!api) {
-		std::fprintf(stderr, "no plugin entry in %s\n", path);
-		return 1;
-	}
 	struct utsname u {};
 	uname(&u);
 	std::printf("machine: %s, %s %s %s\n", cpu_model().c_str(), u.sysname, u.release, u.machine);

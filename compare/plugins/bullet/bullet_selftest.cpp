@@ -2,18 +2,18 @@
 // the closed-form pure slide with errors shrinking with dt, a frictionless elastic head-on hit
 // (speed transfer, momentum, no energy gain), a 30-degree shot that stays straight (the
 // box-friction trap), cushion and pocket events, determinism, and rejection of bad input.
-#include <dlfcn.h>
-
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "pool_engine_plugin.h"
+#include "selftest_support.h"
 
 namespace {
+
+using pool_plugin::fmt;
 
 const pool_engine_api *api = nullptr;
 int failures = 0;
@@ -30,16 +30,6 @@ int failures = 0;
 
 const double kR = 0.028575, kM = 0.17, kG = 9.81;
 const double kPi = 3.14159265358979323846;
-
-std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
-std::string fmt(const char *format, ...) {
-	char buf[4096];
-	va_list args;
-	va_start(args, format);
-	std::vsnprintf(buf, sizeof buf, format, args);
-	va_end(args);
-	return buf;
-}
 
 /// One engine instance, destroyed with the scope.
 struct Run {
@@ -274,16 +264,6 @@ void test_cushion_and_pocket() {
 
 // --- Cushion impulse against Petit's law (PHYSICS.md) -----------------------------------------
 
-struct V3 {
-	double x, y, z;
-};
-V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator*(double k, V3 a) { return {k * a.x, k * a.y, k * a.z}; }
-double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double norm(V3 a) { return std::sqrt(dot(a, a)); }
-
 // A ball rolling (with side spin) into the south cushion: the rebound one step after the
 // contact must be Petit's impulse with libpool's nose normal, v_z dropped (planar mode).
 void cushion_petit(double spin_z) {
@@ -305,28 +285,22 @@ void cushion_petit(double spin_z) {
 		if (after.vel[1] > 0.0)
 			break;
 	}
-	const V3 v{before.vel[0], before.vel[1], 0.0}, w{before.omega[0], before.omega[1], before.omega[2]};
-	const V3 n{0.0, dh / kR, (kR - h) / kR}; // from the nose point to the centre
-	const V3 vc = v - dot(v, n) * n + cross(n, kR * w);
-	const double p = (1.0 + e) * -dot(v, n); // P / m
-	const double s = 1.0 - 3.5 * mu * p / norm(vc);
-	V3 v2, w2;
-	if (s >= 0.0) {
-		v2 = v + p * (n - (mu / norm(vc)) * vc);
-		w2 = w + (2.5 * mu * p / (kR * norm(vc))) * cross(n, vc);
-	} else {
-		v2 = v + p * n - (2.0 / 7.0) * vc;
-		w2 = w + (5.0 / (7.0 * kR)) * cross(n, vc);
-	}
-	const double dv = std::hypot(after.vel[0] - v2.x, after.vel[1] - v2.y);
-	const double dw = norm(V3{after.omega[0], after.omega[1], after.omega[2]} - w2);
+	double v2[3] = {before.vel[0], before.vel[1], 0.0};
+	double w2[3] = {before.omega[0], before.omega[1], before.omega[2]};
+	const double n[3] = {0.0, dh / kR, (kR - h) / kR}; // from the nose point to the centre
+	pool_plugin::petit_impact(n, e, mu, kR, v2, w2);
+	const double dv = std::hypot(after.vel[0] - v2[0], after.vel[1] - v2[1]);
+	const double w2_norm = std::sqrt(w2[0] * w2[0] + w2[1] * w2[1] + w2[2] * w2[2]);
+	const double dw = std::sqrt((after.omega[0] - w2[0]) * (after.omega[0] - w2[0]) +
+	                            (after.omega[1] - w2[1]) * (after.omega[1] - w2[1]) +
+	                            (after.omega[2] - w2[2]) * (after.omega[2] - w2[2]));
 	std::printf("cushion (w_z %5.1f): v after (%.4f, %.4f), Petit (%.4f, %.4f): |dv| %.2e m/s; "
 	            "|dw| %.2e rad/s of %.1f\n",
-	            spin_z, after.vel[0], after.vel[1], v2.x, v2.y, dv, dw, norm(w2));
+	            spin_z, after.vel[0], after.vel[1], v2[0], v2[1], dv, dw, w2_norm);
 	// One step of cloth friction and rolling resistance, and the normal of a contact found
 	// after up to V dt of penetration, separate the two.
 	CHECK(dv < 0.01 * V, "rebound differs from Petit's by %.3g m/s", dv);
-	CHECK(dw < 0.02 * norm(w2), "spin differs from Petit's by %.3g rad/s", dw);
+	CHECK(dw < 0.02 * w2_norm, "spin differs from Petit's by %.3g rad/s", dw);
 }
 
 // --- A break: robustness and determinism ------------------------------------------------------
@@ -422,17 +396,9 @@ int main(int argc, char **argv) {
 		std::fprintf(stderr, "usage: bullet_selftest PATH/libpool_engine_bullet.so\n");
 		return 2;
 	}
-	void *module = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
-	if (!module) {
-		std::fprintf(stderr, "dlopen: %s\n", dlerror());
+	api = pool_plugin::load_plugin(argv[1], "bullet");
+	if (!api)
 		return 1;
-	}
-	auto entry = reinterpret_cast<pool_engine_entry_fn>(dlsym(module, POOL_ENGINE_ENTRY));
-	if (!entry || !(api = entry()) || api->abi_version != POOL_ENGINE_ABI_VERSION ||
-	    std::strcmp(api->name, "bullet") != 0 || api->event_driven != 0) {
-		std::fprintf(stderr, "bad plugin entry\n");
-		return 1;
-	}
 	test_bad_input();
 	test_slide();
 	headon(2.0, 1e-3);

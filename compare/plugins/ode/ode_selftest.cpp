@@ -1,12 +1,10 @@
 // Self-test of the ODE plugin against closed forms (PHYSICS.md, ENGINES.md), through the real
 // module and its C ABI:  ode_selftest PATH/libpool_engine_ode.so [--bench]
 // --bench prints the cost per step for 1 and 16 balls (median and minimum of 5 runs) instead.
-#include <dlfcn.h>
 #include <sys/utsname.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdarg>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,8 +13,11 @@
 #include <vector>
 
 #include "pool_engine_plugin.h"
+#include "selftest_support.h"
 
 namespace {
+
+using pool_plugin::fmt;
 
 const pool_engine_api *api = nullptr;
 int failures = 0;
@@ -29,16 +30,6 @@ void check(bool ok, const char *what, double value, double bound) {
 	std::printf("%-58s %12.6g  (bound %g)  %s\n", what, value, bound, ok ? "ok" : "FAIL");
 	if (!ok)
 		++failures;
-}
-
-std::string fmt(const char *f, ...) __attribute__((format(printf, 1, 2)));
-std::string fmt(const char *f, ...) {
-	char buffer[4096];
-	va_list args;
-	va_start(args, f);
-	std::vsnprintf(buffer, sizeof buffer, f, args);
-	va_end(args);
-	return buffer;
 }
 
 // A scenario on a long test table so shots run their full course without cushions.
@@ -232,33 +223,6 @@ void test_angle(double dt, double b_offset) {
 	api->destroy(r.engine);
 }
 
-// Petit's impulse law (PHYSICS.md) against an immovable obstacle with unit normal n towards
-// the ball, then v_z dropped (planar mode): the oracle for a cushion hit.
-void petit_static(const double n[3], double e, double mu, double v[3], double w[3]) {
-	double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-	double nxw[3] = {n[1] * w[2] - n[2] * w[1], n[2] * w[0] - n[0] * w[2], n[0] * w[1] - n[1] * w[0]};
-	double vc[3], vcl = 0.0;
-	for (int k = 0; k < 3; ++k) {
-		vc[k] = v[k] - vn * n[k] + kR * nxw[k];
-		vcl += vc[k] * vc[k];
-	}
-	vcl = std::sqrt(vcl);
-	const double p = (1.0 + e) * (-vn); // P / M1
-	const bool slipping = vcl > 0.0 && 1.0 - 3.5 * mu * p / vcl >= 0.0;
-	double nxvc[3] = {n[1] * vc[2] - n[2] * vc[1], n[2] * vc[0] - n[0] * vc[2],
-	                  n[0] * vc[1] - n[1] * vc[0]};
-	for (int k = 0; k < 3; ++k) {
-		if (slipping) {
-			v[k] += p * (n[k] - mu * vc[k] / vcl);
-			w[k] += 5.0 * mu * p / (2.0 * kR) * nxvc[k] / vcl;
-		} else {
-			v[k] += p * n[k] - 2.0 / 7.0 * vc[k];
-			w[k] += 5.0 / (7.0 * kR) * nxvc[k];
-		}
-	}
-	v[2] = 0.0;
-}
-
 // A sliding ball sent into the west cushion at an angle: contact when its centre reaches the
 // touch distance d0 = sqrt(R^2 - (h - R)^2) from the nose line, and the velocities after it
 // as Petit's law gives them for the state the closed form predicts at contact.
@@ -273,7 +237,8 @@ void test_cushion(double dt) {
 	double v[3] = {s * ux, s * uy, 0.0};
 	double w[3] = {-k_w * uy, k_w * ux, 0.0}; // (5 mu g t / 2R) (k x u)
 	const double n[3] = {d0 / kR, 0.0, (kR - h) / kR};
-	petit_static(n, e_c, mu_c, v, w);
+	pool_plugin::petit_impact(n, e_c, mu_c, kR, v, w);
+	v[2] = 0.0; // planar mode drops the vertical velocity the impact leaves
 	Run r;
 	r.engine = create(fmt("{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 3, \"pos\": "
 	                      "[%g, 0.635], \"vel\": [%g, %g]}]}",
@@ -522,18 +487,9 @@ int main(int argc, char **argv) {
 		std::fprintf(stderr, "usage: ode_selftest PATH/libpool_engine_ode.so [--bench]\n");
 		return 2;
 	}
-	void *module = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
-	if (!module) {
-		std::fprintf(stderr, "dlopen: %s\n", dlerror());
+	api = pool_plugin::load_plugin(argv[1], "ode");
+	if (!api)
 		return 1;
-	}
-	auto entry = reinterpret_cast<pool_engine_entry_fn>(dlsym(module, POOL_ENGINE_ENTRY));
-	api = entry ? entry() : nullptr;
-	if (!api || api->abi_version != POOL_ENGINE_ABI_VERSION || std::strcmp(api->name, "ode") != 0 ||
-	    api->event_driven != 0) {
-		std::fprintf(stderr, "bad plugin entry\n");
-		return 1;
-	}
 	if (argc > 2 && std::strcmp(argv[2], "--bench") == 0) {
 		bench();
 		return 0;
