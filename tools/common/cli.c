@@ -30,6 +30,16 @@ bool pool_cli_parse_double(const char *text, double *out) {
 	return true;
 }
 
+bool pool_cli_parse_count(const char *text, long *out) {
+	char *end = NULL;
+	errno = 0;
+	long value = strtol(text, &end, 10);
+	if (errno || end == text || *end || value < 0)
+		return false;
+	*out = value;
+	return true;
+}
+
 int pool_cli_write_output(const char *program, const char *path, const char *text) {
 	size_t length = strlen(text);
 	if (path) {

@@ -23,6 +23,10 @@ int pool_cli_usage_error(const char *program, const char *format, ...)
 /// characters, overflow, inf or nan.
 bool pool_cli_parse_double(const char *text, double *out);
 
+/// Reads the whole of text as a decimal integer >= 0; false (out untouched) for empty text,
+/// trailing characters, a sign making it negative, or overflow.
+bool pool_cli_parse_count(const char *text, long *out);
+
 /// Writes text to path atomically (pool_write_file_atomic), or to standard output when path is
 /// NULL. Returns 0, or POOL_EXIT_INTERNAL after printing "PROGRAM: <why>" on standard error.
 int pool_cli_write_output(const char *program, const char *path, const char *text);

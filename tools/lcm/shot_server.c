@@ -2,7 +2,6 @@
 // carrying the same request_id. One simulation is reused for every request (pool_sim_reset via
 // pool_scenario_setup), so a steady stream of shots does not allocate per request.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +9,7 @@
 
 #include <lcm/lcm.h>
 
+#include "cli.h"
 #include "lcm_convert.h"
 #include "lcm_service.h"
 #include "scenario.h"
@@ -123,18 +123,6 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 	pool_lcm_shot_request_t_decode_cleanup(&request);
 }
 
-static int parse_count(const char *text, long *out)
-{
-	char *end = NULL;
-	errno = 0;
-	long value = strtol(text, &end, 10);
-	if (errno || end == text || *end || value < 0) {
-		return -1;
-	}
-	*out = value;
-	return 0;
-}
-
 int main(int argc, char **argv)
 {
 	const char *url = NULL;
@@ -149,7 +137,7 @@ int main(int argc, char **argv)
 		} else if (strncmp(a, "--lcm-url=", 10) == 0) {
 			url = a + 10;
 		} else if (strcmp(a, "--max-requests") == 0 && i + 1 < argc) {
-			if (parse_count(argv[++i], &max_requests) != 0) {
+			if (!pool_cli_parse_count(argv[++i], &max_requests)) {
 				fprintf(stderr, "pool-shot-server: --max-requests: '%s' is not a count >= 0\n",
 				        argv[i]);
 				return EXIT_BAD_INPUT;

@@ -9,6 +9,7 @@
 
 #include <lcm/lcm.h>
 
+#include "cli.h"
 #include "lcm_convert.h"
 #include "lcm_service.h"
 
@@ -87,8 +88,7 @@ int main(int argc, char **argv)
 		} else if (strncmp(a, "--lcm-url=", 10) == 0) {
 			url = a + 10;
 		} else if (strcmp(a, "--count") == 0 && i + 1 < argc) {
-			count = strtol(argv[++i], &end, 10);
-			if (end == argv[i] || *end || count < 0) {
+			if (!pool_cli_parse_count(argv[++i], &count)) {
 				fprintf(stderr, "pool-lcm-subscribe: --count: '%s' is not a count >= 0\n", argv[i]);
 				return 2;
 			}
