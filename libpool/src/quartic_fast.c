@@ -28,33 +28,16 @@ static double pool_qf_cos_third(double s) {
 	return 0.50001916 + s * (0.57673648 + s * (-0.10635367 + s * (0.03833253 + s * -0.00874897)));
 }
 
-// Largest real root of y^3 + b2 y^2 + b1 y + b0 (a closed form, then Newton's iteration).
-static double pool_qf_cubic_largest(double b2, double b1, double b0) {
-	// Depressed: y = t - b2 / 3, t^3 + P t + Q = 0.
-	double s3 = b2 * (1.0 / 3.0);
-	double P = b1 - b2 * s3;
-	double Q = (2.0 / 27.0) * b2 * b2 * b2 - b1 * s3 + b0;
-	double m = -P * (1.0 / 3.0), hq = 0.5 * Q;
-	double disc = hq * hq - m * m * m;
-	double t;
-	if (disc > 0.0) {
-		// One real root (Cardano), the cube root taken on the side without cancellation.
-		double A = -copysign(cbrt(fabs(hq) + sqrt(disc)), Q);
-		t = A != 0.0 ? A + m / A : 0.0;
-	} else if (m > 0.0) {
-		// Three real roots: the largest is 2 sqrt(m) cos(acos(-Q / (2 m^1.5)) / 3).
-		double sm = sqrt(m);
-		double x = -hq / (m * sm);
-		x = fmin(fmax(x, -1.0), 1.0);
-		t = 2.0 * sm * pool_qf_cos_third(sqrt(0.5 + 0.5 * x));
-	} else {
-		t = 0.0;
-	}
-	double y = t - s3;
-	// Newton on the undepressed cubic (removes the cancellation of t - b2 / 3 and the fit's error).
+// y^3 + b2 y^2 + b1 y + b0 and its derivative at y.
+static inline double pool_qf_cubic(double b2, double b1, double b0, double y, double *d) {
+	*d = (3.0 * y + 2.0 * b2) * y + b1;
+	return ((y + b2) * y + b1) * y + b0;
+}
+
+// Newton's iteration on the cubic from y (at most three steps, to 1e-9 relative).
+static double pool_qf_cubic_newton(double b2, double b1, double b0, double y) {
 	for (int it = 0; it < 3; ++it) {
-		double f = ((y + b2) * y + b1) * y + b0;
-		double d = (3.0 * y + 2.0 * b2) * y + b1;
+		double d, f = pool_qf_cubic(b2, b1, b0, y, &d);
 		if (!(d != 0.0))
 			break;
 		double dy = f / d;
@@ -63,6 +46,47 @@ static double pool_qf_cubic_largest(double b2, double b1, double b0) {
 			break;
 	}
 	return y;
+}
+
+// Largest real root of y^3 + b2 y^2 + b1 y + b0 (a closed form, then Newton's iteration).
+// Every root is computed where it is not the difference of two near-equal numbers: y = t - b2 / 3
+// cancels when the largest root is small against b2 > 0; then the most negative root (no
+// cancellation) is computed and the largest comes from the remaining quadratic (Vieta).
+static double pool_qf_cubic_largest(double b2, double b1, double b0) {
+	// Depressed: y = t - b2 / 3, t^3 + P t + Q = 0.
+	double s3 = b2 * (1.0 / 3.0);
+	double P = b1 - b2 * s3;
+	double Q = (2.0 / 27.0) * b2 * b2 * b2 - b1 * s3 + b0;
+	double m = -P * (1.0 / 3.0), hq = 0.5 * Q;
+	double disc = hq * hq - m * m * m;
+	if (disc > 0.0) {
+		// One real root (Cardano), the cube root taken on the side without cancellation.
+		double A = -copysign(cbrt(fabs(hq) + sqrt(disc)), Q);
+		double t = A != 0.0 ? A + m / A : 0.0;
+		return pool_qf_cubic_newton(b2, b1, b0, t - s3);
+	}
+	if (!(m > 0.0))
+		return pool_qf_cubic_newton(b2, b1, b0, -s3); // triple root
+	// Three real roots: t = 2 sqrt(m) cos((acos(x) + 2 pi k) / 3), x = -Q / (2 m^1.5).
+	double sm = sqrt(m);
+	double x = -hq / (m * sm);
+	x = fmin(fmax(x, -1.0), 1.0);
+	if (s3 <= 0.0) {
+		double t = 2.0 * sm * pool_qf_cos_third(sqrt(0.5 + 0.5 * x)); // largest t, y = t + |s3|
+		return pool_qf_cubic_newton(b2, b1, b0, t - s3);
+	}
+	// The smallest root (t = -largest root of the cubic with -Q), y = -(|t| + s3).
+	double t = -2.0 * sm * pool_qf_cos_third(sqrt(0.5 - 0.5 * x));
+	double y1 = pool_qf_cubic_newton(b2, b1, b0, t - s3);
+	if (!(y1 != 0.0))
+		return y1;
+	// The other two: y^2 - sig y + pi with pi = -b0 / y1 and sig = -b2 - y1 = (b1 - pi) / y1, each
+	// form taken where its rounding error is smaller.
+	double pi = -b0 / y1;
+	double sig = fabs(b2) + fabs(y1) <= (fabs(b1) + fabs(pi)) / fabs(y1) ? -b2 - y1 : (b1 - pi) / y1;
+	double q = 0.5 * (sig + copysign(sqrt(fmax(sig * sig - 4.0 * pi, 0.0)), sig));
+	double y = q != 0.0 ? fmax(q, pi / q) : 0.0;
+	return pool_qf_cubic_newton(b2, b1, b0, fmax(y, y1));
 }
 
 // Newton's iteration for a root of p(x) = c0 x^4 + ... + c4 from x, returning false when the
