@@ -42,7 +42,16 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 		return INFINITY;
 	if (dd <= (d0 + POOL_TOUCH_TOLERANCE) * (d0 + POOL_TOUCH_TOLERANCE)) {
 		// Touching (a frozen rack, or just after an event): collide now only if approaching.
-		if (pool_v3_dot(dp, dv) < -POOL_APPROACH_EPS * sqrt(dd))
+		const double dpdv = pool_v3_dot(dp, dv);
+		if (dpdv < -POOL_APPROACH_EPS * sqrt(dd))
+			return 0.0;
+		// ... or if not separating while cloth friction pushes them together (|p|^2 has a negative
+		// second-order term, a2 = dv.dv + 2 da.dp = |dv_t|^2 + 2R a_n): the root at 0 has no
+		// approach speed, and when rounding left them overlapping by a hair there is no later
+		// approaching root either, so they would pass through each other. The threshold keeps
+		// a_n below -1e-9 m/s^2, enough for the event's separation floor (sim.c) to show in the
+		// velocities.
+		if (dpdv <= 0.0 && pool_v3_dot(dv, dv) + 2.0 * pool_v3_dot(da, dp) < -d0 * POOL_APPROACH_EPS)
 			return 0.0;
 	}
 	if (T == 0.0 || !may_touch(dp, dv, da, R, T))

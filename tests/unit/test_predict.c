@@ -132,11 +132,30 @@ static void test_cushion_touching_pushed_in(void **state) {
 	assert_true(isinf(pool_predict_cushion(&t, R, &s, pool_v3(0.0, 1.0, 0.0), 0.1, &rail, &pocket)));
 }
 
+// Touching (here overlapping by 5e-10 m, inside the touch tolerance), no normal relative velocity,
+// and a relative acceleration pushing the balls together (|p|^2 = 4R^2 + a2 t^2 + ... with
+// a2 = dv.dv + 2 da.dp < 0): contact now, or they would pass through each other. With the same
+// acceleration pulling them apart, or a tangential speed fast enough to curve them apart, none.
+static void test_touching_pushed_together(void **state) {
+	(void)state;
+	const pool_vec3 dp = pool_v3(0, -2 * R + 5e-10, 0), dv = pool_v3(0.1, 0, 0);
+	// dp = p1 - p2 points along -y; a relative acceleration with +y drives body 1 into body 2.
+	const pool_vec3 da = pool_v3(-0.3, 0.9, 0);
+	assert_true(pool_v3_dot(dv, dv) + 2.0 * pool_v3_dot(da, dp) < 0.0);
+	assert_true(pool_predict_ball_ball(dp, dv, da, R, 1.0) == 0.0);
+	assert_true(pool_predict_ball_ball(pool_v3(0, -2 * R, 0), dv, da, R, 1.0) == 0.0);
+	// Pulled apart: never within the window.
+	assert_true(isinf(pool_predict_ball_ball(dp, dv, pool_v3(-0.3, -0.9, 0), R, 1.0)));
+	// Tangential speed 1 m/s curves them apart faster than 1.8 m/s^2 pushes them in: a2 > 0.
+	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(1.0, 0, 0), da, R, 1.0)));
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_linear_approach),
 		cmocka_unit_test(test_decelerating),
 		cmocka_unit_test(test_touching),
+		cmocka_unit_test(test_touching_pushed_together),
 		cmocka_unit_test(test_cushion_and_pockets),
 		cmocka_unit_test(test_cushion_touching_pushed_in),
 	};

@@ -465,6 +465,31 @@ static void test_frozen_to_rail_curving_in(void **state) {
 	pool_sim_destroy(sim);
 }
 
+// Two balls touching within the touch tolerance (overlap 5e-10 m); one slides past the other
+// with a slip whose friction pushes it into the other (u = v + R k x w has -y). They must never
+// interpenetrate beyond the tolerance, sampled every millisecond in closed form.
+static void test_touching_slide_into_neighbour(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	pool_sim *sim = make_sim(&def);
+	const double R = def.params.ball_radius;
+	pool_ball_state a = rest(1, 1.0, 0.6), b = rest(2, 1.0, 0.6 + 2.0 * R - 5e-10);
+	b.vel = pool_v3(0.1, 0.0, 0.0);
+	b.omega = pool_v3(20.0, 0.0, 0.0);
+	assert_int_equal(pool_sim_add_ball(sim, &a, NULL), POOL_OK);
+	assert_int_equal(pool_sim_add_ball(sim, &b, NULL), POOL_OK);
+	pool_ball_state s[2];
+	for (int k = 0; k <= 2000; ++k) {
+		double t = 1e-3 * k;
+		assert_int_equal(pool_sim_run_until(sim, t), POOL_OK);
+		assert_int_equal(pool_sim_state_at(sim, t, s), POOL_OK);
+		double d = pool_v3_len(pool_v3_sub(s[0].pos, s[1].pos));
+		if (d < 2.0 * R - POOL_TOUCH_TOLERANCE)
+			fail_msg("t = %g: centres %.12g m apart, overlap %.3g m", t, d, 2.0 * R - d);
+	}
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_stun_shot),       cmocka_unit_test(test_natural_roll_shot),
@@ -472,6 +497,7 @@ int main(void) {
 		cmocka_unit_test(test_ball_ball_shots), cmocka_unit_test(test_frozen_break),
 		cmocka_unit_test(test_validation),      cmocka_unit_test(test_limits),
 		cmocka_unit_test(test_memory),          cmocka_unit_test(test_frozen_to_rail_curving_in),
+		cmocka_unit_test(test_touching_slide_into_neighbour),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
