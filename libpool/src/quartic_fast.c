@@ -23,9 +23,18 @@
 #include "quartic_fast.h"
 
 // cos(acos(x) / 3) = g(s) with s = sqrt((1 + x) / 2) in [0, 1] (g is analytic there): a least-
-// squares polynomial fit, error below 2e-5; the resolvent root is then polished by Newton.
+// squares polynomial fit, error below 4e-7; the resolvent root is then polished by Newton.
 static double pool_qf_cos_third(double s) {
-	return 0.50001916 + s * (0.57673648 + s * (-0.10635367 + s * (0.03833253 + s * -0.00874897)));
+	return 0.50000039 +
+	       s * (0.57732735 + s * (-0.1107795 + s * (0.05142129 + s * (-0.02636776 + s * (0.01051999 + s * -0.00212205)))));
+}
+
+// fmax / fmin without the library call (no NaN can reach them: inputs are checked first).
+static inline double pool_qf_max(double x, double y) {
+	return x > y ? x : y;
+}
+static inline double pool_qf_min(double x, double y) {
+	return x < y ? x : y;
 }
 
 // y^3 + b2 y^2 + b1 y + b0 and its derivative at y.
@@ -34,7 +43,8 @@ static inline double pool_qf_cubic(double b2, double b1, double b0, double y, do
 	return ((y + b2) * y + b1) * y + b0;
 }
 
-// Newton's iteration on the cubic from y (at most three steps, to 1e-9 relative).
+// Newton's iteration on the cubic from y (at most three steps, until a step is below 1e-6 |y|:
+// the error left is then of order 1e-12, which the factor refinement removes).
 static double pool_qf_cubic_newton(double b2, double b1, double b0, double y) {
 	for (int it = 0; it < 3; ++it) {
 		double d, f = pool_qf_cubic(b2, b1, b0, y, &d);
@@ -42,7 +52,7 @@ static double pool_qf_cubic_newton(double b2, double b1, double b0, double y) {
 			break;
 		double dy = f / d;
 		y -= dy;
-		if (!(fabs(dy) > 1e-9 * fabs(y)))
+		if (!(fabs(dy) > 1e-6 * fabs(y)))
 			break;
 	}
 	return y;
@@ -70,7 +80,7 @@ static double pool_qf_cubic_largest(double b2, double b1, double b0) {
 	// Three real roots: t = 2 sqrt(m) cos((acos(x) + 2 pi k) / 3), x = -Q / (2 m^1.5).
 	double sm = sqrt(m);
 	double x = -hq / (m * sm);
-	x = fmin(fmax(x, -1.0), 1.0);
+	x = pool_qf_min(pool_qf_max(x, -1.0), 1.0);
 	if (s3 <= 0.0) {
 		double t = 2.0 * sm * pool_qf_cos_third(sqrt(0.5 + 0.5 * x)); // largest t, y = t + |s3|
 		return pool_qf_cubic_newton(b2, b1, b0, t - s3);
@@ -84,9 +94,9 @@ static double pool_qf_cubic_largest(double b2, double b1, double b0) {
 	// form taken where its rounding error is smaller.
 	double pi = -b0 / y1;
 	double sig = fabs(b2) + fabs(y1) <= (fabs(b1) + fabs(pi)) / fabs(y1) ? -b2 - y1 : (b1 - pi) / y1;
-	double q = 0.5 * (sig + copysign(sqrt(fmax(sig * sig - 4.0 * pi, 0.0)), sig));
-	double y = q != 0.0 ? fmax(q, pi / q) : 0.0;
-	return pool_qf_cubic_newton(b2, b1, b0, fmax(y, y1));
+	double q = 0.5 * (sig + copysign(sqrt(pool_qf_max(sig * sig - 4.0 * pi, 0.0)), sig));
+	double y = q != 0.0 ? pool_qf_max(q, pi / q) : 0.0;
+	return pool_qf_cubic_newton(b2, b1, b0, pool_qf_max(y, y1));
 }
 
 // Newton's iteration for a root of p(x) = c0 x^4 + ... + c4 from x, returning false when the
@@ -138,10 +148,10 @@ int pool_quartic_fast_real_roots(const double c[5], double roots[4]) {
 	double e, f;
 	// Take the square root of the one with less cancellation, the other from g = 2 e f.
 	if (e2 * (0.25 * y * y + fd) >= f2 * (0.25 * a * a + fb + fabs(y))) {
-		e = sqrt(fmax(e2, 0.0));
+		e = sqrt(pool_qf_max(e2, 0.0));
 		f = e > 0.0 ? g / (2.0 * e) : 0.0;
 	} else {
-		f = copysign(sqrt(fmax(f2, 0.0)), g);
+		f = copysign(sqrt(pool_qf_max(f2, 0.0)), g);
 		e = f != 0.0 ? g / (2.0 * f) : 0.0;
 	}
 	double al1 = 0.5 * a - e, al2 = 0.5 * a + e;
@@ -179,7 +189,7 @@ int pool_quartic_fast_real_roots(const double c[5], double roots[4]) {
 		// Converged when the correction is small against each factor's scale s (s^2 = max(al^2,
 		// |be|); the larger root is about s) for al, and against |be| itself for be (the smaller
 		// root is be / q: it needs be to relative accuracy).
-		double s1 = fmax(al1 * al1, fabs(be1)), s2 = fmax(al2 * al2, fabs(be2));
+		double s1 = pool_qf_max(al1 * al1, fabs(be1)), s2 = pool_qf_max(al2 * al2, fabs(be2));
 		double tol = 1e-9;
 		if (dal1 * dal1 <= tol * tol * s1 && fabs(dbe1) <= tol * fabs(be1) && dal2 * dal2 <= tol * tol * s2 &&
 		    fabs(dbe2) <= tol * fabs(be2)) {
@@ -221,7 +231,7 @@ int pool_quartic_fast_real_roots(const double c[5], double roots[4]) {
 		r[j] = x;
 	}
 	for (int i = 0; i < n; ++i) {
-		if (i > 0 && !(r[i] - r[i - 1] > 1e-7 * fmax(fabs(r[i]), fabs(r[i - 1]))))
+		if (i > 0 && !(r[i] - r[i - 1] > 1e-7 * pool_qf_max(fabs(r[i]), fabs(r[i - 1]))))
 			return -1;
 		roots[i] = r[i];
 	}
