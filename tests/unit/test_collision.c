@@ -195,12 +195,59 @@ static void test_cushion_geometry(void **state) {
 	assert_true(b.vel.z < 0.0 && b.vel.y < 0.0);
 }
 
+// Cushion rebounds worked out by hand from Petit's law with the nose normal n = (0, -c, -s) of
+// the north rail (c = sqrt(R^2 - (h - R)^2) / R, s = (h - R) / R, c^2 + s^2 = 1):
+// - a ball rolling straight in at v (w = (-v/R, 0, 0)) has Vc = v (1 + s) (0, s, -c) and
+//   P/m = (1 + e) c v; with the defaults it slips (s_test >= 0), so
+//   v_y' = v (1 - (1 + e) c (c + mu s)): 0.811 v with e = 0.85, mu = 0.2 (VALIDATION.md's
+//   measured ~0.9 is for a real, deforming cushion), v_z' = (1 + e) c v (mu c - s).
+// - a stun ball with side spin wz (w = (0, 0, wz)) has Vc = (-c R wz, s^2 v, -c s v); when it
+//   sticks, v' = v + (P/m) n - (2/7) Vc and w' = w + (5 / 7R) n x Vc
+//   = (5 s v / 7R, 5 s c wz / 7, wz (1 - 5 c^2 / 7)): counter-clockwise spin (wz > 0) throws
+//   the ball to +x.
+static void test_cushion_rebounds(void **state) {
+	(void)state;
+	const pool_params p = pool_default_params();
+	const pool_table_def t = pool_default_table_def();
+	const double R = p.ball_radius, h = t.cushion_height, e = p.e_cushion, mu = p.mu_cushion;
+	const double c = sqrt(R * R - (h - R) * (h - R)) / R, sn = (h - R) / R;
+	const pool_vec3 pos = pool_v3(1.0, t.width - c * R, R);
+	const pool_vec3 n = pool_cushion_normal(&t, pos, POOL_RAIL_NORTH);
+	near_rel(n.y, -c, 1e-15);
+	near_rel(n.z, -sn, 1e-15);
+	for (double v = 0.25; v < 4.0; v *= 2.0) {
+		// Rolling straight in: slipping branch.
+		assert_true(1.0 - 3.5 * mu * (1.0 + e) * c / (1.0 + sn) >= 0.0);
+		pool_ball_state b = at(pos, pool_v3(0, v, 0), pool_v3(-v / R, 0, 0));
+		near_rel(pool_collide(&b, R, p.ball_mass, NULL, R, 0.0, n, e, mu), (1.0 + e) * p.ball_mass * c * v, 1e-14);
+		near_rel(b.vel.y, v * (1.0 - (1.0 + e) * c * (c + mu * sn)), 1e-13);
+		near_rel(b.vel.z, (1.0 + e) * c * v * (mu * c - sn), 1e-13);
+		assert_true(fabs(b.vel.x) < 1e-15);
+		assert_true(fabs(-b.vel.y / v - 0.811) < 1e-3);
+		// w' = w + 5 mu (P/m) / (2R) n x Vc/|Vc|, n x (0, s, -c) = (1, 0, 0).
+		near_rel(b.omega.x, -v / R + 5.0 * mu * (1.0 + e) * c * v / (2.0 * R), 1e-13);
+		// Side spin, stun: sticking branch.
+		const double wz = 40.0 * v;
+		b = at(pos, pool_v3(0, v, 0), pool_v3(0, 0, wz));
+		const double vc = sqrt(c * c * R * R * wz * wz + sn * sn * sn * sn * v * v + c * c * sn * sn * v * v);
+		assert_true(1.0 - 3.5 * mu * (1.0 + e) * c * v / vc < 0.0);
+		pool_collide(&b, R, p.ball_mass, NULL, R, 0.0, n, e, mu);
+		near_rel(b.vel.x, 2.0 / 7.0 * c * R * wz, 1e-13);
+		near_rel(b.vel.y, v - (1.0 + e) * c * c * v - 2.0 / 7.0 * sn * sn * v, 1e-13);
+		near_rel(b.vel.z, -(1.0 + e) * c * sn * v + 2.0 / 7.0 * c * sn * v, 1e-13);
+		near_rel(b.omega.x, 5.0 * sn * v / (7.0 * R), 1e-13);
+		near_rel(b.omega.y, 5.0 * sn * c * wz / 7.0, 1e-13);
+		near_rel(b.omega.z, wz * (1.0 - 5.0 * c * c / 7.0), 1e-13);
+	}
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_cut_angles),
 		cmocka_unit_test(test_rolling_cue_ball),
 		cmocka_unit_test(test_invariants),
 		cmocka_unit_test(test_cushion_geometry),
+		cmocka_unit_test(test_cushion_rebounds),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -172,10 +172,48 @@ static void test_derive(void **state) {
 	assert_int_equal(make(&p, pool_v3(0, 0, 0), pool_v3(3, 0, 0)).motion, POOL_MOTION_SLIDING);
 }
 
+// z-spin through the state changes: slide_roll keeps wz (it only snaps w_perp = k x v / R),
+// roll_stop zeroes v and w_perp but keeps wz, which decays on at 5 mu_spin g / (2R) until
+// spin_stop, whatever the state, from its value at the segment start.
+static void test_spin_through_changes(void **state) {
+	(void)state;
+	pool_params p = pool_default_params();
+	const double R = p.ball_radius, rate = 5.0 * p.mu_spin * p.g / (2.0 * R), v0 = 0.3, wz0 = 30.0;
+	pool_ball_state s = make(&p, pool_v3(v0, 0, 0), pool_v3(0, 0, wz0)); // stun with side spin
+	assert_int_equal(s.motion, POOL_MOTION_SLIDING);
+	pool_event_type kind;
+	double t1 = pool_motion_next_change(&p, &s, &kind);
+	assert_int_equal(kind, POOL_EVENT_SLIDE_ROLL);
+	near_rel(t1, 2.0 * v0 / (7.0 * p.mu_slide * p.g));
+	pool_ball_state r;
+	pool_motion_evolve(&p, &s, t1, &r);
+	pool_motion_apply_change(&p, &r, kind);
+	assert_int_equal(r.motion, POOL_MOTION_ROLLING);
+	near_rel(r.omega.z, wz0 - rate * t1);
+	near_rel(r.omega.y, 5.0 * v0 / (7.0 * R));
+	double t2 = pool_motion_next_change(&p, &r, &kind);
+	assert_int_equal(kind, POOL_EVENT_ROLL_STOP);
+	near_rel(t2, 5.0 * v0 / 7.0 / (p.mu_roll * p.g));
+	pool_ball_state q;
+	pool_motion_evolve(&p, &r, t2, &q);
+	pool_motion_apply_change(&p, &q, kind);
+	assert_int_equal(q.motion, POOL_MOTION_SPINNING);
+	assert_true(q.vel.x == 0.0 && q.omega.x == 0.0 && q.omega.y == 0.0);
+	near_rel(q.omega.z, wz0 - rate * (t1 + t2));
+	double t3 = pool_motion_next_change(&p, &q, &kind);
+	assert_int_equal(kind, POOL_EVENT_SPIN_STOP);
+	near_rel(t1 + t2 + t3, wz0 / rate);
+	pool_motion_evolve(&p, &q, t3, &r);
+	pool_motion_apply_change(&p, &r, kind);
+	assert_int_equal(r.motion, POOL_MOTION_STATIONARY);
+	assert_true(r.omega.z == 0.0);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_stun),       cmocka_unit_test(test_top_back_spin), cmocka_unit_test(test_masse),
 		cmocka_unit_test(test_roll_stop),  cmocka_unit_test(test_spin_decay),    cmocka_unit_test(test_derive),
+		cmocka_unit_test(test_spin_through_changes),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
