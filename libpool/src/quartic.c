@@ -536,6 +536,26 @@ int pool_quartic_real_roots(const double c[5], double roots[4]) {
 int pool_quartic_smallest_root_in(const double c[5], double lo, double hi, double *root) {
 	if (!c || !root || !(lo <= hi))
 		return -1;
+	// The verified algebraic path gives all real roots (ascending) at less than the cost of
+	// isolating inside the window; when it declines, or a root is within 1e-9 relative of an end of
+	// the window (inside or outside is then decided by the sign of p at the end, as isolation does:
+	// a root exactly at lo is lo), isolation inside [lo, hi] as before.
+	double r[4];
+	int fast = pool_quartic_fast_real_roots(c, r);
+	bool near_end = false;
+	for (int i = 0; i < fast; ++i) {
+		double tol = 1e-9 * fabs(r[i]);
+		near_end |= fabs(r[i] - lo) <= tol || fabs(r[i] - hi) <= tol;
+	}
+	if (fast >= 0 && !near_end) {
+		for (int i = 0; i < fast; ++i) {
+			if (r[i] >= lo && r[i] <= hi) {
+				*root = r[i];
+				return 0;
+			}
+		}
+		return -1;
+	}
 	pool_q_poly p;
 	if (!pool_q_prepare(c, &p))
 		return -1;

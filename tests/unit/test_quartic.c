@@ -615,6 +615,128 @@ static void test_random_products(void **state) {
 	assert_true(checked > 4000);
 }
 
+// Clustered roots, the cases where an algebraic solver's root count is at risk (the fast path
+// must then decline, or be right): near-double real roots (relative gaps 1e-1 ... 1e-9), complex
+// pairs close to the real axis (|Im| / |z| 1e-1 ... 1e-7), two nearby complex pairs, a real root
+// next to a complex pair, and root magnitudes spread over 1e-8 ... 1e8. Judged as in
+// test_random_products: every well-conditioned case gets the right count and accurate roots.
+static void test_clustered_products(void **state) {
+	(void)state;
+	int checked = 0, skipped = 0;
+	for (int iter = 0; iter < 40000; ++iter) {
+		int kind = iter % 4;
+		double scale = tq_log_uniform(-4.0, 4.0);
+		long double real[4], pairs[2][2];
+		int n_real = 0, n_pairs = 0;
+		double gap = tq_log_uniform(-9.0, -1.0);
+		long double base = tq_signed(scale * tq_log_uniform(-2.0, 2.0));
+		if (kind == 0) { // near-double real pair and two more real roots or a complex pair
+			real[n_real++] = base;
+			real[n_real++] = base * (1.0L + tq_signed(gap));
+			if (tq_uniform() < 0.5) {
+				real[n_real++] = tq_signed(scale * tq_log_uniform(-4.0, 4.0));
+				real[n_real++] = tq_signed(scale * tq_log_uniform(-4.0, 4.0));
+			} else {
+				pairs[n_pairs][0] = tq_signed(scale * tq_log_uniform(-4.0, 4.0));
+				pairs[n_pairs][1] = scale * tq_log_uniform(-4.0, 4.0);
+				++n_pairs;
+			}
+		} else if (kind == 1) { // complex pair near the real axis
+			pairs[n_pairs][0] = base;
+			pairs[n_pairs][1] = fabsl(base) * tq_log_uniform(-7.0, -1.0);
+			++n_pairs;
+			real[n_real++] = tq_signed(scale * tq_log_uniform(-4.0, 4.0));
+			real[n_real++] = tq_signed(scale * tq_log_uniform(-4.0, 4.0));
+		} else if (kind == 2) { // two nearby complex pairs
+			long double im = fabsl(base) * tq_log_uniform(-3.0, 1.0);
+			pairs[0][0] = base;
+			pairs[0][1] = im;
+			pairs[1][0] = base * (1.0L + tq_signed(gap));
+			pairs[1][1] = im * (1.0L + gap * tq_uniform());
+			n_pairs = 2;
+		} else { // a real root next to a complex pair, one more real root
+			long double im = fabsl(base) * tq_log_uniform(-4.0, 0.0);
+			pairs[0][0] = base;
+			pairs[0][1] = im;
+			n_pairs = 1;
+			real[n_real++] = base + tq_signed(im * tq_log_uniform(-2.0, 1.0));
+			real[n_real++] = tq_signed(scale * tq_log_uniform(-4.0, 4.0));
+		}
+		bool near_real = false;
+		for (int i = 0; i < n_pairs; ++i)
+			near_real |= fabsl(pairs[i][1]) < 1e-3L * hypotl(pairs[i][0], pairs[i][1]);
+		long double cl[5];
+		tq_expand(tq_signed(tq_log_uniform(-6.0, 6.0)), n_real, real, n_pairs, (const long double(*)[2])pairs, cl);
+		double c[5];
+		for (int k = 0; k < 5; ++k)
+			c[k] = (double)cl[k];
+		long double ref[4];
+		double kap[4];
+		bool ill = near_real;
+		for (int i = 0; i < n_real; ++i) {
+			long double x = real[i];
+			for (int it = 0; it < 30; ++it) {
+				long double f = 0.0L, d = 0.0L;
+				for (int k = 0; k < 5; ++k) {
+					d = d * x + f;
+					f = f * x + c[k];
+				}
+				if (d == 0.0L)
+					break;
+				x -= f / d;
+			}
+			ref[i] = x;
+			kap[i] = tq_kappa(c, x, NULL);
+			if (!(kap[i] * tq_u <= 1e-9) || fabsl(x - real[i]) > 1e-6L * fabsl(real[i]))
+				ill = true;
+		}
+		for (int i = 1; i < n_real; ++i)
+			for (int j = i; j > 0 && ref[j - 1] > ref[j]; --j) {
+				long double tr = ref[j];
+				ref[j] = ref[j - 1];
+				ref[j - 1] = tr;
+				double tk = kap[j];
+				kap[j] = kap[j - 1];
+				kap[j - 1] = tk;
+			}
+		for (int i = 1; i < n_real; ++i)
+			if (!(ref[i] - ref[i - 1] > 1e-12L * fabsl(ref[i])))
+				ill = true; // polished into one root: clustered beyond what the reference resolves
+		double r[4];
+		int n = pool_quartic_real_roots(c, r);
+		assert_true(n >= 0 && n <= 4);
+		for (int i = 1; i < n; ++i)
+			assert_true(r[i - 1] <= r[i]);
+		if (ill) {
+			++skipped;
+			continue;
+		}
+		++checked;
+		if (n != n_real)
+			fail_msg("case %d (kind %d): %d real roots, expected %d (coeffs %.17g %.17g %.17g %.17g %.17g)", iter, kind, n,
+			         n_real, c[0], c[1], c[2], c[3], c[4]);
+		for (int i = 0; i < n; ++i)
+			if (!tq_close(r[i], (double)ref[i], kap[i]))
+				fail_msg("case %d (kind %d): root %.17g, expected %.17Lg (kappa %g)", iter, kind, r[i], ref[i], kap[i]);
+		// The window solver finds the smallest non-negative root.
+		int first = -1;
+		for (int i = 0; i < n && first < 0; ++i)
+			if (r[i] >= 0.0)
+				first = i;
+		double t;
+		int got = pool_quartic_smallest_root_in(c, 0.0, INFINITY, &t);
+		if (first < 0) {
+			assert_true(got < 0);
+		} else {
+			assert_int_equal(got, 0);
+			if (!tq_close(t, (double)ref[first], kap[first]))
+				fail_msg("case %d: window root %.17g, expected %.17Lg", iter, t, ref[first]);
+		}
+	}
+	print_message("  clustered products: %d well-conditioned checked, %d ill-conditioned skipped\n", checked, skipped);
+	assert_true(checked > 20000);
+}
+
 // Arbitrary bit patterns and magnitudes: never a crash or hang, 0 to 4 finite sorted roots, and a
 // window root inside its window.
 static void test_arbitrary_input(void **state) {
@@ -689,6 +811,7 @@ int main(void) {
 	    cmocka_unit_test(test_lower_degrees),
 	    cmocka_unit_test(test_zero_constant_and_bad_input),
 	    cmocka_unit_test(test_random_products),
+	    cmocka_unit_test(test_clustered_products),
 	    cmocka_unit_test(test_arbitrary_input),
 	    cmocka_unit_test(test_smallest_root_in),
 	};
