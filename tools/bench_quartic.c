@@ -15,6 +15,7 @@
 #include <pool/quartic.h>
 
 #include "bench_quartic_ref.h"
+#include "bench_util.h"
 // libpool-internal: the fast algebraic path alone, to report how often it declines (fallback).
 #include "../libpool/src/quartic_fast.h"
 
@@ -53,30 +54,12 @@ static int bq_parse_long(const char *flag, const char *s, long lo, long hi, long
 	return 0;
 }
 
-static double bq_now_ns(void) {
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return 1e9 * (double)ts.tv_sec + (double)ts.tv_nsec;
-}
+static double bq_now_ns(void) { return 1e9 * pool_bench_now_s(); }
 
 static void bq_machine(void) {
-	char model[256] = "unknown";
-	FILE *f = fopen("/proc/cpuinfo", "r");
-	if (f) {
-		char line[512];
-		while (fgets(line, sizeof line, f)) {
-			if (strncmp(line, "model name", 10) == 0) {
-				char *colon = strchr(line, ':');
-				if (colon) {
-					snprintf(model, sizeof model, "%s", colon + 2);
-					model[strcspn(model, "\n")] = '\0';
-				}
-				break;
-			}
-		}
-		fclose(f);
-	}
-	printf("machine: %s, %ld logical cores; compiler: gcc %s\n", model, sysconf(_SC_NPROCESSORS_ONLN), __VERSION__);
+	char model[256];
+	printf("machine: %s, %ld logical cores; compiler: gcc %s\n", pool_bench_cpu_model(model, sizeof model),
+	       pool_bench_cpus_online(), __VERSION__);
 }
 
 // GSL as a user would call it: coefficients in ascending order, exactly-zero leading terms dropped
@@ -121,20 +104,9 @@ static int bq_gsl_real_roots(bq_gsl *g, const double c[5], double roots[4]) {
 	return m;
 }
 
-static int bq_cmp_double(const void *x, const void *y) {
-	double a = *(const double *)x, b = *(const double *)y;
-	return (a > b) - (a < b);
-}
+typedef pool_bench_summary bq_timing;
 
-typedef struct bq_timing {
-	double median, min;
-} bq_timing;
-
-static bq_timing bq_summarise(double *ns, long runs) {
-	qsort(ns, (size_t)runs, sizeof ns[0], bq_cmp_double);
-	bq_timing t = {runs % 2 ? ns[runs / 2] : 0.5 * (ns[runs / 2 - 1] + ns[runs / 2]), ns[0]};
-	return t;
-}
+static bq_timing bq_summarise(double *ns, long runs) { return pool_bench_summarise(ns, (size_t)runs); }
 
 static volatile double bq_sink;
 

@@ -9,7 +9,7 @@ if(POOL_GSL_FOUND)
     ${CMAKE_CURRENT_SOURCE_DIR}/bench_quartic.c
     ${CMAKE_CURRENT_SOURCE_DIR}/bench_quartic_gen.c
     ${CMAKE_CURRENT_SOURCE_DIR}/bench_quartic_ref.c)
-  target_link_libraries(pool-bench-quartic PRIVATE pool PkgConfig::POOL_GSL m)
+  target_link_libraries(pool-bench-quartic PRIVATE pool_bench_util pool PkgConfig::POOL_GSL m)
   # clock_gettime, sysconf
   target_compile_definitions(pool-bench-quartic PRIVATE _POSIX_C_SOURCE=200809L)
   set_target_properties(pool-bench-quartic PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
