@@ -1,0 +1,426 @@
+"""libpool from Python: exact, event-driven pool (billiards) shots through ctypes.
+
+    import libpool
+    with libpool.Sim() as sim:
+        sim.rack("8ball")
+        sim.break_strike(8.0)
+        sim.run()
+        print(sim.pocketed)
+
+Angles are DEGREES in this module (as in the scenario files); the C API takes radians.
+Lengths in metres, speeds in m/s, spins in rad/s. Failed calls raise PoolError.
+"""
+
+import math
+from ctypes import byref, c_double, c_int, c_void_p
+from dataclasses import dataclass
+from typing import Optional, Tuple
+
+from . import _ffi
+from ._ffi import Allocator, BallState as CBallState, Error as CError, Event as CEvent, Params
+from ._ffi import SimDef, Strike, TableDef, Vec3, library_path
+
+__all__ = [
+    "PoolError", "Ball", "EventRecord", "Sim", "TableDef", "Params", "Strike", "SimDef", "Vec3",
+    "Allocator", "table_preset", "default_table", "default_params", "default_sim_def",
+    "validate_table", "validate_params", "strike_velocities", "rack", "break_strike",
+    "quartic_real_roots", "quartic_smallest_root_in", "library_path", "RESULT_NAMES",
+]
+
+# pool_result values by name (pool/base.h).
+RESULT_NAMES = {
+    0: "POOL_OK", -1: "POOL_ERR_INVALID_ARGUMENT", -2: "POOL_ERR_NON_FINITE",
+    -3: "POOL_ERR_OUT_OF_MEMORY", -4: "POOL_ERR_OVERLAP", -5: "POOL_ERR_OFF_TABLE",
+    -6: "POOL_ERR_DUPLICATE_ID", -7: "POOL_ERR_UNKNOWN_BALL", -8: "POOL_ERR_BAD_STRIKE",
+    -9: "POOL_ERR_UNKNOWN_PRESET", -10: "POOL_ERR_STATE", -11: "POOL_ERR_INTERNAL",
+}
+_ERR_INVALID_ARGUMENT = -1
+_ERR_STATE = -10
+_STOP_NAMES = {0: None, 1: "rest", 2: "max_time", 3: "max_events"}
+_RACKS = {"8ball": 0, "9ball": 1}
+_MOTION_POCKETED = 6
+_DEG = math.pi / 180.0  # the factor pool-sim's scenario parser uses, so results match bit for bit
+
+
+def _lib():
+    return _ffi.load()
+
+
+class PoolError(Exception):
+    """A libpool call failed. code: the pool_result (negative int); name: e.g. "POOL_ERR_OVERLAP";
+    reason: pool_result_str(code); message: the pool_error message naming the field (may be "")."""
+
+    def __init__(self, code, message=""):
+        self.code = int(code)
+        self.name = RESULT_NAMES.get(self.code, "POOL_ERR_UNKNOWN")
+        self.reason = _lib().pool_result_str(self.code).decode()
+        self.message = message
+        super().__init__(f"{message} ({self.reason})" if message else self.reason)
+
+
+def _check(code, err=None):
+    if code < 0:
+        raise PoolError(code, err.message.decode("utf-8", "replace") if err is not None else "")
+    return code
+
+
+def _vec(v, name):
+    t = tuple(float(x) for x in v)
+    if len(t) != 3:
+        raise PoolError(_ERR_INVALID_ARGUMENT, f"{name}: expected 3 numbers, got {len(t)}")
+    return Vec3(*t)
+
+
+def _int32(v, name):
+    if isinstance(v, bool) or int(v) != v or not -2**31 <= int(v) < 2**31:
+        raise PoolError(_ERR_INVALID_ARGUMENT, f"{name}: must be a 32-bit integer")
+    return int(v)
+
+
+@dataclass(frozen=True)
+class Ball:
+    """One ball's state: id, motion name ("sliding", "pocketed", ...), pos, vel, omega (tuples)."""
+    id: int
+    motion: str
+    pos: Tuple[float, float, float]
+    vel: Tuple[float, float, float]
+    omega: Tuple[float, float, float]
+
+    @staticmethod
+    def _from_c(s):
+        return Ball(s.id, _motion_name(s.motion), (s.pos.x, s.pos.y, s.pos.z),
+                    (s.vel.x, s.vel.y, s.vel.z), (s.omega.x, s.omega.y, s.omega.z))
+
+
+@dataclass(frozen=True)
+class EventRecord:
+    """One processed event: time (s), type name ("ball_ball", ...), ids of the balls involved,
+    rail and pocket names (None when not applicable), and the balls' states just after it."""
+    time: float
+    type: str
+    balls: Tuple[int, ...]
+    rail: Optional[str]
+    pocket: Optional[str]
+    after: Tuple[Ball, ...]
+
+
+_name_cache = {}
+
+
+def _name(fn, value):
+    key = (fn, value)
+    if key not in _name_cache:
+        s = getattr(_lib(), fn)(value)
+        _name_cache[key] = s.decode() if s is not None else None
+    return _name_cache[key]
+
+
+def _motion_name(m):
+    return _name("pool_motion_name", m)
+
+
+# ---- tables, parameters, strikes, racks --------------------------------------------------------
+
+def default_table():
+    """The WPA 9 ft table (pool_default_table_def)."""
+    return _lib().pool_default_table_def()
+
+
+def table_preset(name):
+    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft"."""
+    t = TableDef()
+    code = _lib().pool_table_preset(str(name).encode(), byref(t))
+    if code < 0:
+        raise PoolError(code, f"table.preset: unknown preset '{name}'")
+    return t
+
+
+def default_params():
+    """PHYSICS.md defaults (pool_default_params); edit the fields, e.g. p.mu_slide = 0.25."""
+    return _lib().pool_default_params()
+
+
+def default_sim_def():
+    """pool_default_sim_def(): WPA 9 ft, default params, planar, max_time 120 s, 100000 events."""
+    return _lib().pool_default_sim_def()
+
+
+def validate_table(table):
+    """Raises PoolError naming the field if the table is invalid."""
+    err = CError()
+    _check(_lib().pool_table_def_validate(byref(table), byref(err)), err)
+
+
+def validate_params(params):
+    """Raises PoolError naming the field if a parameter is out of range."""
+    err = CError()
+    _check(_lib().pool_params_validate(byref(params), byref(err)), err)
+
+
+def make_strike(speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0):
+    """A C Strike from degrees (converted as pool-sim converts the scenario file's degrees)."""
+    return Strike(float(speed), float(phi_deg) * _DEG, float(theta_deg) * _DEG, float(a), float(b))
+
+
+def strike_velocities(speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0, params=None):
+    """(vel, omega) the strike gives a ball at rest, as tuples (pool_strike_velocities)."""
+    p = params if params is not None else default_params()
+    s = make_strike(speed, phi_deg, theta_deg, a, b)
+    vel, omega, err = Vec3(), Vec3(), CError()
+    _check(_lib().pool_strike_velocities(byref(p), byref(s), byref(vel), byref(omega),
+                                         byref(err)), err)
+    return tuple(vel), tuple(omega)
+
+
+def break_strike(speed):
+    """pool_break_strike: centre ball, level cue, straight at the apex (a C Strike, radians)."""
+    return _lib().pool_break_strike(float(speed))
+
+
+def rack(kind, gap=0.0, table=None, params=None):
+    """The balls of a standard rack ("8ball" or "9ball"; cue ball id 0 first) as Ball records;
+    gap in metres between neighbours (0 = frozen)."""
+    return [Ball._from_c(s) for s in _rack_c(kind, gap, table, params)]
+
+
+def _rack_c(kind, gap, table, params):
+    if kind not in _RACKS:
+        raise PoolError(_ERR_INVALID_ARGUMENT, f"rack: unknown kind '{kind}' (8ball or 9ball)")
+    t = table if table is not None else default_table()
+    p = params if params is not None else default_params()
+    out = (CBallState * 16)()
+    n = _check(_lib().pool_rack(_RACKS[kind], byref(t), byref(p), float(gap), out, 16))
+    return out[:n]
+
+
+# ---- quartic ----------------------------------------------------------------------------------
+
+def quartic_real_roots(coeffs):
+    """Real roots, ascending with multiplicity, of c0 x^4 + c1 x^3 + c2 x^2 + c3 x + c4
+    (coeffs = [c0, ..., c4]; leading zeros give lower degrees)."""
+    c = (c_double * 5)(*_five(coeffs))
+    r = (c_double * 4)()
+    n = _lib().pool_quartic_real_roots(c, r)
+    return list(r[:n])
+
+
+def quartic_smallest_root_in(coeffs, lo, hi):
+    """Smallest real root in [lo, hi], or None."""
+    c = (c_double * 5)(*_five(coeffs))
+    r = c_double()
+    n = _lib().pool_quartic_smallest_root_in(c, float(lo), float(hi), byref(r))
+    return r.value if n >= 0 else None
+
+
+def _five(coeffs):
+    c = [float(x) for x in coeffs]
+    if len(c) != 5:
+        raise PoolError(_ERR_INVALID_ARGUMENT, f"coeffs: expected 5 numbers, got {len(c)}")
+    return c
+
+
+# ---- the simulation ---------------------------------------------------------------------------
+
+def _sim_def(table, params, max_time, max_events, airborne):
+    d = default_sim_def()
+    if table is not None:
+        d.table = table_preset(table) if isinstance(table, str) else table
+    if params is not None:
+        d.params = params
+    if max_time is not None:
+        d.max_time = float(max_time)
+    if max_events is not None:
+        d.max_events = _int32(max_events, "options.max_events")
+    d.airborne = bool(airborne)
+    return d
+
+
+class Sim:
+    """One pool_sim: add balls, strike, run, read events and states. Use as a context manager or
+    call close(); reset() starts a new shot reusing every buffer (the candidate-shot loop).
+
+    table: a preset name ("wpa-9ft"...) or a TableDef; params: a Params (default_params());
+    max_time in s, max_events; airborne is rejected by the library for now."""
+
+    def __init__(self, table=None, params=None, max_time=None, max_events=None, airborne=False):
+        self._def = _sim_def(table, params, max_time, max_events, airborne)
+        self._sim = c_void_p()
+        err = CError()
+        _check(_lib().pool_sim_create(byref(self._def), byref(self._sim), byref(err)), err)
+        self._count = c_int()
+        self._states = None  # state_at buffer, grown to the ball count
+
+    # lifetime
+    def close(self):
+        """Frees the simulation (idempotent)."""
+        if getattr(self, "_sim", None):
+            _lib().pool_sim_destroy(self._sim)
+            self._sim = c_void_p()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown may have torn down the module already
+            pass
+
+    def _p(self):
+        if not self._sim:
+            raise PoolError(_ERR_STATE, "sim: closed")
+        return self._sim
+
+    @property
+    def definition(self):
+        """The SimDef in use (a copy)."""
+        d = SimDef()
+        d.table, d.params, d.airborne = self._def.table, self._def.params, self._def.airborne
+        d.max_time, d.max_events = self._def.max_time, self._def.max_events
+        return d
+
+    @property
+    def table(self):
+        return self.definition.table
+
+    @property
+    def params(self):
+        return self.definition.params
+
+    def reset(self, table=None, params=None, max_time=None, max_events=None, airborne=None):
+        """Removes every ball and event (a new shot), keeping memory. With arguments, changes the
+        definition too (others keep their current values)."""
+        p = self._p()
+        err = CError()
+        if table is None and params is None and max_time is None and max_events is None \
+                and airborne is None:
+            _check(_lib().pool_sim_reset(p, None, byref(err)), err)
+            return
+        d = _sim_def(table if table is not None else self._def.table,
+                     params if params is not None else self._def.params,
+                     max_time if max_time is not None else self._def.max_time,
+                     max_events if max_events is not None else self._def.max_events,
+                     airborne if airborne is not None else self._def.airborne)
+        _check(_lib().pool_sim_reset(p, byref(d), byref(err)), err)
+        self._def = d
+
+    # setup
+    def add_ball(self, id, pos, vel=(0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0)):
+        """Adds a ball before the shot. pos is (x, y) on the cloth (z = R) or (x, y, z)."""
+        pos = tuple(pos)
+        if len(pos) == 2:
+            pos = (pos[0], pos[1], self._def.params.ball_radius)
+        s = CBallState(_int32(id, "ball.id"), 0, _vec(pos, "ball.pos"), _vec(vel, "ball.vel"),
+                       _vec(omega, "ball.omega"))
+        err = CError()
+        _check(_lib().pool_sim_add_ball(self._p(), byref(s), byref(err)), err)
+
+    def _add_c(self, states):
+        p, err, add = self._p(), CError(), _lib().pool_sim_add_ball
+        for s in states:
+            _check(add(p, byref(s), byref(err)), err)
+
+    def add_balls(self, balls):
+        """Adds Ball records (e.g. from rack() or state_at())."""
+        for b in balls:
+            self.add_ball(b.id, b.pos, b.vel, b.omega)
+
+    def rack(self, kind, gap=0.0):
+        """Adds a standard rack ("8ball" or "9ball", cue ball id 0 on the head spot) for this
+        sim's table and ball radius; returns the balls added."""
+        states = _rack_c(kind, gap, self._def.table, self._def.params)
+        self._add_c(states)
+        return [Ball._from_c(s) for s in states]
+
+    def strike(self, ball_id, speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0):
+        """Cue strike at the current time: speed m/s, phi (aim from +x, counter-clockwise) and
+        theta (elevation) in DEGREES, tip offsets a (right) and b (up) in m, a^2 + b^2 < R^2."""
+        self.strike_c(ball_id, make_strike(speed, phi_deg, theta_deg, a, b))
+
+    def strike_c(self, ball_id, strike):
+        """Cue strike with a C Strike (radians), e.g. break_strike(speed)."""
+        err = CError()
+        _check(_lib().pool_sim_strike(self._p(), _int32(ball_id, "strike.ball"), byref(strike),
+                                      byref(err)), err)
+
+    def break_strike(self, speed, ball_id=0):
+        """The centre-ball break (pool_break_strike) on the cue ball."""
+        self.strike_c(ball_id, break_strike(speed))
+
+    # running
+    def step(self):
+        """Processes the next event; False when the shot is over (see stop_reason)."""
+        return _check(_lib().pool_sim_step(self._p())) == 1
+
+    def run(self):
+        """Runs the shot to its end (rest, max_time or max_events); returns stop_reason."""
+        _check(_lib().pool_sim_run(self._p()))
+        return self.stop_reason
+
+    def run_until(self, t):
+        """Processes every event at or before t (s)."""
+        _check(_lib().pool_sim_run_until(self._p(), float(t)))
+
+    # results
+    @property
+    def stop_reason(self):
+        """None while events remain, else "rest", "max_time" or "max_events"."""
+        return _STOP_NAMES[_lib().pool_sim_stop_reason(self._p())]
+
+    @property
+    def time(self):
+        """s, time of the last processed event."""
+        return _lib().pool_sim_time(self._p())
+
+    @property
+    def ball_count(self):
+        return _lib().pool_sim_ball_count(self._p())
+
+    @property
+    def balls(self):
+        """Every ball as of the last event that involved it, by insertion order."""
+        lib, p = _lib(), self._p()
+        n = lib.pool_sim_ball_count(p)
+        arr = lib.pool_sim_balls(p)
+        return [Ball._from_c(arr[i]) for i in range(n)]
+
+    @property
+    def pocketed(self):
+        """Ids of the balls pocketed so far."""
+        lib, p = _lib(), self._p()
+        arr = lib.pool_sim_balls(p)
+        return [arr[i].id for i in range(lib.pool_sim_ball_count(p))
+                if arr[i].motion == _MOTION_POCKETED]
+
+    @property
+    def event_count(self):
+        _lib().pool_sim_events(self._p(), byref(self._count))
+        return self._count.value
+
+    @property
+    def events(self):
+        """Every processed event, in time order, as EventRecord."""
+        lib, p = _lib(), self._p()
+        evs = lib.pool_sim_events(p, byref(self._count))
+        out = []
+        for i in range(self._count.value):
+            e = evs[i]
+            st = lib.pool_sim_event_states(p, byref(e))
+            after = tuple(Ball._from_c(st[k]) for k in range(e.ball_count))
+            out.append(EventRecord(e.time, _name("pool_event_type_name", e.type),
+                                   tuple(b.id for b in after), _name("pool_rail_name", e.rail),
+                                   _name("pool_pocket_name", e.pocket), after))
+        return out
+
+    def state_at(self, t):
+        """Every ball at time t (exact, closed form between events), by insertion order; t must
+        not exceed the processed time unless the shot is over."""
+        lib, p = _lib(), self._p()
+        n = lib.pool_sim_ball_count(p)
+        if self._states is None or len(self._states) < max(n, 1):
+            self._states = (CBallState * max(n, 16))()
+        _check(lib.pool_sim_state_at(p, float(t), self._states))
+        return [Ball._from_c(self._states[i]) for i in range(n)]

@@ -1,0 +1,171 @@
+"""ctypes mirrors of the public C structures of libpool and the prototypes of its functions.
+
+Layouts follow libpool/include/pool/*.h field by field; tests/python checks every size and offset
+against a C program compiled from those headers, so a change on either side fails the tests.
+"""
+
+import ctypes
+import ctypes.util
+import os
+from ctypes import POINTER, c_bool, c_char, c_char_p, c_double, c_int, c_int32, c_void_p
+
+__all__ = [
+    "Vec3", "TableDef", "Params", "BallState", "Strike", "Event", "Allocator", "SimDef", "Error",
+    "STRUCTS", "load", "library_path",
+]
+
+
+class _Struct(ctypes.Structure):
+    """Structure with a readable repr and a dict view (names as in the C header)."""
+
+    def as_dict(self):
+        """Fields as a dict; nested structures as dicts too."""
+        out = {}
+        for name, _ in self._fields_:
+            v = getattr(self, name)
+            out[name] = v.as_dict() if isinstance(v, _Struct) else v
+        return out
+
+    def __repr__(self):
+        body = ", ".join(f"{n}={getattr(self, n)!r}" for n, _ in self._fields_)
+        return f"{type(self).__name__}({body})"
+
+
+class Vec3(_Struct):
+    """pool_vec3: x, y, z (m, m/s or rad/s)."""
+    _fields_ = [("x", c_double), ("y", c_double), ("z", c_double)]
+
+    def __iter__(self):
+        return iter((self.x, self.y, self.z))
+
+    def __repr__(self):
+        return f"Vec3({self.x!r}, {self.y!r}, {self.z!r})"
+
+
+class TableDef(_Struct):
+    """pool_table_def: table geometry in metres."""
+    _fields_ = [("length", c_double), ("width", c_double), ("cushion_height", c_double),
+                ("corner_mouth", c_double), ("side_mouth", c_double)]
+
+
+class Params(_Struct):
+    """pool_params: physical parameters, names and units as in PHYSICS.md."""
+    _fields_ = [(n, c_double) for n in (
+        "g", "mu_slide", "mu_roll", "mu_spin", "mu_ball", "e_ball", "mu_cushion", "e_cushion",
+        "mu_table", "e_table", "ball_radius", "ball_mass", "cue_mass")]
+
+
+class BallState(_Struct):
+    """pool_ball_state: id, motion (pool_motion value), pos, vel, omega."""
+    _fields_ = [("id", c_int32), ("motion", c_int), ("pos", Vec3), ("vel", Vec3), ("omega", Vec3)]
+
+
+class Strike(_Struct):
+    """pool_strike: speed m/s, phi and theta in RADIANS (the C convention), a and b in m."""
+    _fields_ = [("speed", c_double), ("phi", c_double), ("theta", c_double),
+                ("a", c_double), ("b", c_double)]
+
+
+class Event(_Struct):
+    """pool_event: time, type, rail, pocket, ball_count, first_state."""
+    _fields_ = [("time", c_double), ("type", c_int), ("rail", c_int), ("pocket", c_int),
+                ("ball_count", c_int), ("first_state", c_int)]
+
+
+class Allocator(_Struct):
+    """pool_allocator as three pointers (alloc, free, context); leave zero for malloc/free."""
+    _fields_ = [("alloc", c_void_p), ("free", c_void_p), ("context", c_void_p)]
+
+
+class SimDef(_Struct):
+    """pool_sim_def: table, params, airborne, max_time, max_events, allocator."""
+    _fields_ = [("table", TableDef), ("params", Params), ("airborne", c_bool),
+                ("max_time", c_double), ("max_events", c_int), ("allocator", Allocator)]
+
+
+class Error(_Struct):
+    """pool_error: the field-naming message of a failed validating call."""
+    _fields_ = [("message", c_char * 256)]
+
+
+# C name -> mirror; the layout test walks this.
+STRUCTS = {
+    "pool_vec3": Vec3, "pool_table_def": TableDef, "pool_params": Params,
+    "pool_ball_state": BallState, "pool_strike": Strike, "pool_event": Event,
+    "pool_allocator": Allocator, "pool_sim_def": SimDef, "pool_error": Error,
+}
+
+_sim_p = c_void_p  # pool_sim * (opaque)
+_E = POINTER(Error)
+
+# name: (restype, argtypes) for every public function of pool/*.h.
+_PROTOTYPES = {
+    "pool_result_str": (c_char_p, [c_int]),
+    "pool_motion_name": (c_char_p, [c_int]),
+    "pool_motion_from_name": (c_int, [c_char_p]),
+    "pool_event_type_name": (c_char_p, [c_int]),
+    "pool_rail_name": (c_char_p, [c_int]),
+    "pool_pocket_name": (c_char_p, [c_int]),
+    "pool_quartic_real_roots": (c_int, [POINTER(c_double), POINTER(c_double)]),
+    "pool_quartic_smallest_root_in": (c_int, [POINTER(c_double), c_double, c_double,
+                                              POINTER(c_double)]),
+    "pool_default_table_def": (TableDef, []),
+    "pool_table_preset": (c_int, [c_char_p, POINTER(TableDef)]),
+    "pool_default_params": (Params, []),
+    "pool_table_def_validate": (c_int, [POINTER(TableDef), _E]),
+    "pool_params_validate": (c_int, [POINTER(Params), _E]),
+    "pool_strike_velocities": (c_int, [POINTER(Params), POINTER(Strike), POINTER(Vec3),
+                                       POINTER(Vec3), _E]),
+    "pool_rack": (c_int, [c_int, POINTER(TableDef), POINTER(Params), c_double,
+                          POINTER(BallState), c_int]),
+    "pool_break_strike": (Strike, [c_double]),
+    "pool_default_sim_def": (SimDef, []),
+    "pool_sim_create": (c_int, [POINTER(SimDef), POINTER(_sim_p), _E]),
+    "pool_sim_destroy": (None, [_sim_p]),
+    "pool_sim_reset": (c_int, [_sim_p, POINTER(SimDef), _E]),
+    "pool_sim_add_ball": (c_int, [_sim_p, POINTER(BallState), _E]),
+    "pool_sim_strike": (c_int, [_sim_p, c_int32, POINTER(Strike), _E]),
+    "pool_sim_step": (c_int, [_sim_p]),
+    "pool_sim_run": (c_int, [_sim_p]),
+    "pool_sim_run_until": (c_int, [_sim_p, c_double]),
+    "pool_sim_stop_reason": (c_int, [_sim_p]),
+    "pool_sim_time": (c_double, [_sim_p]),
+    "pool_sim_ball_count": (c_int, [_sim_p]),
+    "pool_sim_balls": (POINTER(BallState), [_sim_p]),
+    "pool_sim_state_at": (c_int, [_sim_p, c_double, POINTER(BallState)]),
+    "pool_sim_events": (POINTER(Event), [_sim_p, POINTER(c_int)]),
+    "pool_sim_event_states": (POINTER(BallState), [_sim_p, POINTER(Event)]),
+}
+
+
+def library_path():
+    """Where libpool.so is: $LIBPOOL_PATH, else the repository's build/release tree, else the
+    system's library search (ctypes.util.find_library). None when nothing is found."""
+    env = os.environ.get("LIBPOOL_PATH")
+    if env:
+        return env
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    built = os.path.join(repo, "build", "release", "libpool", "libpool.so")
+    if os.path.exists(built):
+        return built
+    return ctypes.util.find_library("pool")
+
+
+_lib = None
+
+
+def load():
+    """The loaded library with every prototype set (loaded once)."""
+    global _lib
+    if _lib is None:
+        path = library_path()
+        if path is None:
+            raise OSError("libpool.so not found: set LIBPOOL_PATH, build the repository into "
+                          "build/release, or install libpool")
+        lib = ctypes.CDLL(path)
+        for name, (restype, argtypes) in _PROTOTYPES.items():
+            fn = getattr(lib, name)
+            fn.restype = restype
+            fn.argtypes = argtypes
+        _lib = lib
+    return _lib
