@@ -12,7 +12,9 @@ Lengths in metres, speeds in m/s, spins in rad/s. Failed calls raise PoolError.
 """
 
 import math
-from ctypes import byref, c_double, c_int, c_void_p
+import struct
+import sys
+from ctypes import addressof, byref, c_double, c_int, c_void_p, cast, sizeof, string_at
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
@@ -39,6 +41,9 @@ _ERR_STATE = -10
 _STOP_NAMES = {0: None, 1: "rest", 2: "max_time", 3: "max_events"}
 _RACKS = {"8ball": 0, "9ball": 1}
 _MOTION_POCKETED = 6
+# Records are plain slotted dataclasses: frozen ones cost about twice as much to build, and a
+# break builds a few hundred of them.
+_DATACLASS_OPTS = {"slots": True} if sys.version_info >= (3, 10) else {}
 _DEG = math.pi / 180.0  # the factor pool-sim's scenario parser uses, so results match bit for bit
 
 
@@ -77,7 +82,7 @@ def _int32(v, name):
     return int(v)
 
 
-@dataclass(frozen=True)
+@dataclass(**_DATACLASS_OPTS)
 class Ball:
     """One ball's state: id, motion name ("sliding", "pocketed", ...), pos, vel, omega (tuples)."""
     id: int
@@ -92,7 +97,7 @@ class Ball:
                     (s.vel.x, s.vel.y, s.vel.z), (s.omega.x, s.omega.y, s.omega.z))
 
 
-@dataclass(frozen=True)
+@dataclass(**_DATACLASS_OPTS)
 class EventRecord:
     """One processed event: time (s), type name ("ball_ball", ...), ids of the balls involved,
     rail and pocket names (None when not applicable), and the balls' states just after it."""
@@ -115,8 +120,28 @@ def _name(fn, value):
     return _name_cache[key]
 
 
+def _name_table(fn):
+    return lambda value: _name(fn, value)
+
+
 def _motion_name(m):
     return _name("pool_motion_name", m)
+
+
+# Raw layouts for bulk reads (one string_at + iter_unpack instead of a ctypes attribute access
+# per number); checked against the ctypes mirrors at import, which the tests check against C.
+_BALL_FMT = struct.Struct("=ii9d")
+_EVENT_FMT = struct.Struct("=d5i4x")
+assert _BALL_FMT.size == sizeof(CBallState) and _EVENT_FMT.size == sizeof(CEvent)
+
+
+def _balls_raw(ptr, n):
+    """Ball records from n pool_ball_state at ptr."""
+    if n <= 0:
+        return []
+    raw = string_at(ptr, n * _BALL_FMT.size)
+    return [Ball(i, _motion_name(m), (px, py, pz), (vx, vy, vz), (wx, wy, wz))
+            for i, m, px, py, pz, vx, vy, vz, wx, wy, wz in _BALL_FMT.iter_unpack(raw)]
 
 
 # ---- tables, parameters, strikes, racks --------------------------------------------------------
@@ -383,17 +408,17 @@ class Sim:
     def balls(self):
         """Every ball as of the last event that involved it, by insertion order."""
         lib, p = _lib(), self._p()
-        n = lib.pool_sim_ball_count(p)
-        arr = lib.pool_sim_balls(p)
-        return [Ball._from_c(arr[i]) for i in range(n)]
+        return _balls_raw(lib.pool_sim_balls(p), lib.pool_sim_ball_count(p))
 
     @property
     def pocketed(self):
         """Ids of the balls pocketed so far."""
         lib, p = _lib(), self._p()
-        arr = lib.pool_sim_balls(p)
-        return [arr[i].id for i in range(lib.pool_sim_ball_count(p))
-                if arr[i].motion == _MOTION_POCKETED]
+        n = lib.pool_sim_ball_count(p)
+        if n <= 0:
+            return []
+        raw = string_at(lib.pool_sim_balls(p), n * _BALL_FMT.size)
+        return [rec[0] for rec in _BALL_FMT.iter_unpack(raw) if rec[1] == _MOTION_POCKETED]
 
     @property
     def event_count(self):
@@ -405,15 +430,28 @@ class Sim:
         """Every processed event, in time order, as EventRecord."""
         lib, p = _lib(), self._p()
         evs = lib.pool_sim_events(p, byref(self._count))
-        out = []
-        for i in range(self._count.value):
-            e = evs[i]
-            st = lib.pool_sim_event_states(p, byref(e))
-            after = tuple(Ball._from_c(st[k]) for k in range(e.ball_count))
-            out.append(EventRecord(e.time, _name("pool_event_type_name", e.type),
-                                   tuple(b.id for b in after), _name("pool_rail_name", e.rail),
-                                   _name("pool_pocket_name", e.pocket), after))
-        return out
+        n = self._count.value
+        if n == 0:
+            return []
+        events = list(_EVENT_FMT.iter_unpack(string_at(evs, n * _EVENT_FMT.size)))
+        # The after-states of all events live in one array indexed by first_state (pool/event.h);
+        # read it at once when pool_sim_event_states confirms that, else event by event.
+        first = cast(lib.pool_sim_event_states(p, evs), c_void_p).value
+        last = cast(lib.pool_sim_event_states(p, byref(evs[n - 1])), c_void_p).value
+        base = first - events[0][5] * _BALL_FMT.size
+        if last == base + events[-1][5] * _BALL_FMT.size:
+            total = max(e[5] + e[4] for e in events)
+            states = _balls_raw(base, total)
+            afters = [tuple(states[e[5]:e[5] + e[4]]) for e in events]
+        else:
+            afters = [tuple(_balls_raw(lib.pool_sim_event_states(p, byref(evs[i])), e[4]))
+                      for i, e in enumerate(events)]
+        ev_name, rail_name, pocket_name = (_name_table("pool_event_type_name"),
+                                           _name_table("pool_rail_name"),
+                                           _name_table("pool_pocket_name"))
+        return [EventRecord(t, ev_name(ty), tuple(b.id for b in after), rail_name(r),
+                            pocket_name(pk), after)
+                for (t, ty, r, pk, _, _), after in zip(events, afters)]
 
     def state_at(self, t):
         """Every ball at time t (exact, closed form between events), by insertion order; t must
@@ -423,4 +461,4 @@ class Sim:
         if self._states is None or len(self._states) < max(n, 1):
             self._states = (CBallState * max(n, 16))()
         _check(lib.pool_sim_state_at(p, float(t), self._states))
-        return [Ball._from_c(self._states[i]) for i in range(n)]
+        return _balls_raw(addressof(self._states), n)
