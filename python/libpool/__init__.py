@@ -273,6 +273,7 @@ class Sim:
         err = CError()
         _check(_lib().pool_sim_create(byref(self._def), byref(self._sim), byref(err)), err)
         self._count = c_int()
+        self._err = CError()  # reused by the hot calls
         self._states = None  # state_at buffer, grown to the ball count
 
     # lifetime
@@ -335,13 +336,15 @@ class Sim:
     # setup
     def add_ball(self, id, pos, vel=(0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0)):
         """Adds a ball before the shot. pos is (x, y) on the cloth (z = R) or (x, y, z)."""
-        pos = tuple(pos)
         if len(pos) == 2:
             pos = (pos[0], pos[1], self._def.params.ball_radius)
-        s = CBallState(_int32(id, "ball.id"), 0, _vec(pos, "ball.pos"), _vec(vel, "ball.vel"),
-                       _vec(omega, "ball.omega"))
-        err = CError()
-        _check(_lib().pool_sim_add_ball(self._p(), byref(s), byref(err)), err)
+        # Vec3(*v) would zero-fill a short sequence silently, hence the length checks.
+        if len(pos) != 3 or len(vel) != 3 or len(omega) != 3:
+            _vec(pos, "ball.pos"), _vec(vel, "ball.vel"), _vec(omega, "ball.omega")
+        if type(id) is not int or not -0x80000000 <= id <= 0x7FFFFFFF:
+            id = _int32(id, "ball.id")
+        s = CBallState(id, 0, Vec3(*pos), Vec3(*vel), Vec3(*omega))
+        _check(_lib().pool_sim_add_ball(self._p(), byref(s), byref(self._err)), self._err)
 
     def _add_c(self, states):
         p, err, add = self._p(), CError(), _lib().pool_sim_add_ball

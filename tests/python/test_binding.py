@@ -172,6 +172,16 @@ class Errors(unittest.TestCase):
         sim.add_ball(1, (1.2, 0.6))  # the sim stays usable
         self.assertEqual(sim.ball_count, 2)
 
+    def test_python_side_checks(self):
+        # What ctypes would silently truncate or zero-fill is rejected before the C call.
+        sim = libpool.Sim()
+        self.check(lambda: sim.add_ball(0, (1.0,)), "POOL_ERR_INVALID_ARGUMENT", "ball.pos")
+        self.check(lambda: sim.add_ball(0, (1.0, 0.5), vel=(1.0, 0.0)), "POOL_ERR_INVALID_ARGUMENT",
+                   "ball.vel")
+        self.check(lambda: sim.add_ball(2**32, (1.0, 0.5)), "POOL_ERR_INVALID_ARGUMENT", "ball.id")
+        self.check(lambda: sim.add_ball(1.5, (1.0, 0.5)), "POOL_ERR_INVALID_ARGUMENT", "ball.id")
+        self.assertEqual(sim.ball_count, 0)
+
     def test_duplicate_id(self):
         sim = libpool.Sim()
         sim.add_ball(4, (1.0, 0.6))
