@@ -64,6 +64,9 @@ static int check_fields(parse_ctx *ctx, json_t *obj, const char *path, const cha
 			if (strcmp(key, *a) == 0)
 				known = true;
 		if (!known) {
+			// An empty key would give a message with no field name at all.
+			if (!key[0])
+				return fail(ctx, "%s: unknown field \"\"", path[0] ? path : "(document)");
 			if (path[0])
 				return fail(ctx, "%s.%s: unknown field", path, key);
 			return fail(ctx, "%s: unknown field", key);
@@ -188,6 +191,8 @@ static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
 		size_t i = 0;
 		while (i < n && strcmp(key, names[i].name) != 0)
 			++i;
+		if (i == n && !key[0])
+			return fail(ctx, "params: unknown field \"\"");
 		if (i == n)
 			return fail(ctx, "params.%s: unknown field", key);
 		char path[64];
