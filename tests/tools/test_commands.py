@@ -293,6 +293,36 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
         self.assertEqual(r.returncode, 2)
         self.assertIn(path.encode(), r.stderr)
 
+    def test_unusual_input_files(self):
+        # What cannot be tested in-process: a directory, a device and a 100 MB file as input.
+        # Each exits 2 with one message naming the input or the document, and writes no file.
+        directory = os.path.join(ARGS.work, "unusual")
+        shutil.rmtree(directory, ignore_errors=True)
+        os.makedirs(directory)
+        out = os.path.join(directory, "result.json")
+        big = os.path.join(ARGS.work, "big_nested.json")
+        with open(big, "wb") as f:
+            f.write(b"[" * (100 * 1024 * 1024))
+        empty = write("empty.json", "")
+        try:
+            cases = [
+                (directory, directory + ": read error: "),
+                ("/dev/null", "(document): malformed JSON at line 1"),
+                (empty, "(document): malformed JSON at line 1"),
+                (big, "(document): malformed JSON at line 1"),
+            ]
+            for path, expect in cases:
+                with self.subTest(path=path):
+                    r = sim(path, "-o", out)
+                    message = r.stderr.decode()
+                    self.assertEqual(r.returncode, 2, message)
+                    self.assertTrue(message.startswith("pool-sim: " + expect), message)
+                    self.assertEqual(message.count("\n"), 1, message)
+                    self.assertEqual(r.stdout, b"")
+                    self.assertEqual(os.listdir(directory), [])
+        finally:
+            os.unlink(big)
+
     def test_valid_variants(self):
         # Explicit table fields over a preset, parameters, a moving ball without a strike, 3D pos.
         doc = {

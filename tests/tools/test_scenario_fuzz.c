@@ -3,7 +3,7 @@
 // crash, hang, leak or undefined behaviour (the sanitizer build runs this with ASan + UBSan).
 // Seeds are every compare/scenarios/*.json plus hand-written documents; mutants come from a
 // splitmix64 generator with a fixed seed, so every run tests the same inputs.
-// POOL_FUZZ_CASES=N overrides the number of mutants.
+// POOL_FUZZ_CASES=N overrides the number of mutants; POOL_FUZZ_SEED=S explores other mutants.
 #define _POSIX_C_SOURCE 200809L // strdup, opendir
 #include <setjmp.h>
 #include <stdarg.h>
@@ -395,7 +395,7 @@ static const char *const ids[] = {
 
 static void mutate_once(buf *b) {
 	size_t len = b->len;
-	switch (rnd(14)) {
+	switch (rnd(16)) {
 	case 0: // flip one bit
 		if (len)
 			b->data[rnd(len)] ^= (char)(1u << rnd(8));
@@ -536,6 +536,25 @@ static void mutate_once(buf *b) {
 			buf_splice(b, s.start, s.end - s.start, many.data, many.len);
 			free(many.data);
 		}
+		break;
+	}
+	case 14: { // a number is scaled or nudged: still valid, different physics
+		span v[4096];
+		size_t n = find_values(b, v, 4096, true);
+		if (!n)
+			break;
+		span s = v[rnd(n)];
+		char token[64];
+		size_t tl = s.end - s.start < 63 ? s.end - s.start : 63;
+		memcpy(token, b->data + s.start, tl);
+		token[tl] = '\0';
+		double x = strtod(token, NULL);
+		static const double factors[] = {0.0, 0.5, 0.9, 0.999999, 1.000001, 1.1, 2.0, 10.0, -1.0, 1e-6};
+		x = rnd(4) ? x * factors[rnd(sizeof factors / sizeof factors[0])]
+		           : x + ((double)rnd(2001) - 1000.0) * 1e-4;
+		char out[64];
+		snprintf(out, sizeof out, "%.17g", x);
+		buf_splice(b, s.start, s.end - s.start, out, strlen(out));
 		break;
 	}
 	default: { // a whole object value is replaced by another type or emptied
@@ -764,6 +783,9 @@ static void test_mutants(void **state) {
 	fuzz_stats stats = {0};
 	buf b = {0};
 	rng_state = 0x706F6F6C2D66757Aull; // "pool-fuz": fixed, so every run sees the same mutants
+	const char *seed_env = getenv("POOL_FUZZ_SEED"); // for exploring; ctest never sets it
+	if (seed_env && *seed_env)
+		rng_state = strtoull(seed_env, NULL, 0);
 	for (long c = 0; c < cases; ++c) {
 		size_t k = rnd(seeds.count);
 		buf_set(&b, seeds.docs[k], seeds.lens[k]);

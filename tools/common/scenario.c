@@ -490,8 +490,8 @@ int pool_scenario_load_file(const char *path, pool_scenario *scenario, char *err
 		size_t n = fread(data + length, 1, capacity - length, f);
 		length += n;
 		if (n == 0) {
-			if (ferror(f))
-				status = fail(&ctx, "%s: read error", path);
+			if (ferror(f)) // e.g. a directory: say why (EISDIR)
+				status = fail(&ctx, "%s: read error: %s", path, strerror(errno));
 			break;
 		}
 	}
