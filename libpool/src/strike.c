@@ -33,7 +33,13 @@ pool_result pool_strike_velocities(const pool_params *params, const pool_strike 
 	const double F = 2.0 * m * strike->speed /
 	                 (1.0 + m / M + (5.0 / (2.0 * R * R)) * pool_v3_dot(qd, qd));
 	const double I = 0.4 * m * R * R;
-	*vel = pool_v3_scale(d, F / m);
-	*omega = pool_v3_scale(qd, F / I);
+	const pool_vec3 v = pool_v3_scale(d, F / m), w = pool_v3_scale(qd, F / I);
+	// Safety net for parameters whose products overflow or underflow: never hand out NaN.
+	if (!(isfinite(v.x) && isfinite(v.y) && isfinite(v.z) && isfinite(w.x) && isfinite(w.y) &&
+	      isfinite(w.z)))
+		return pool_error_set(error, POOL_ERR_NON_FINITE,
+		                      "strike.speed: the ball's velocity or spin is not finite with these params");
+	*vel = v;
+	*omega = w;
 	return pool_error_ok(error);
 }

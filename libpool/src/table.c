@@ -1,6 +1,7 @@
 // Table presets, default parameters and their validation (PHYSICS.md defaults table).
 #include "pool/table.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -106,5 +107,14 @@ pool_result pool_params_validate(const pool_params *p, pool_error *error) {
 	    (r = positive(p->ball_mass, "params.ball_mass", error)) ||
 	    (r = positive(p->cue_mass, "params.cue_mass", error)))
 		return r;
+	// The strike and collision laws divide by m R^2 and 2 m R: when those underflow (a subnormal
+	// mass such as 4.9e-324 kg) or overflow, spins come out NaN (found by test_scenario_fuzz).
+	const double inertia = 0.4 * p->ball_mass * p->ball_radius * p->ball_radius;
+	const double mass_radius = 2.0 * p->ball_mass * p->ball_radius;
+	if (!(inertia >= DBL_MIN && inertia <= DBL_MAX && mass_radius >= DBL_MIN && mass_radius <= DBL_MAX))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "params.ball_mass: %g kg with ball_radius %g m is out of range "
+		                      "(0.4 m R^2 is not a normal number)",
+		                      p->ball_mass, p->ball_radius);
 	return pool_error_ok(error);
 }

@@ -662,6 +662,9 @@ static void check_simulation(pool_scenario *s, bool sample, const char *label, f
 		if (!(ev->time >= last) || !isfinite(ev->time))
 			fail_msg("%s: event %d at t = %.17g after t = %.17g", label, i, ev->time, last);
 		last = ev->time;
+		if (ev->time > s->def.max_time)
+			fail_msg("%s: event %d at t = %.17g is after max_time %.17g", label, i, ev->time,
+			         s->def.max_time);
 		if (ev->ball_count < 1 || ev->ball_count > s->ball_count)
 			fail_msg("%s: event %d involves %d balls", label, i, ev->ball_count);
 		const pool_ball_state *after = pool_sim_event_states(sim, ev);
@@ -745,6 +748,59 @@ static void test_seeds_are_valid(void **state) {
 	assert_int_equal(stats.accepted, (long)seeds.count);
 }
 
+// Every number field set to every extreme, one at a time, so the corners are always covered
+// (the random mutants reach them only by chance).
+static void test_every_field_at_extremes(void **state) {
+	(void)state;
+	static const char *const fields[] = {
+		"params.g", "params.mu_slide", "params.mu_roll", "params.mu_spin", "params.mu_ball",
+		"params.e_ball", "params.mu_cushion", "params.e_cushion", "params.mu_table",
+		"params.e_table", "params.ball_radius", "params.ball_mass", "params.cue_mass",
+		"table.length", "table.width", "table.cushion_height", "table.corner_mouth",
+		"table.side_mouth", "strike.speed", "strike.phi", "strike.theta", "strike.a", "strike.b",
+		"options.max_time", "options.max_events", "vel", "omega",
+	};
+	static const char *const values[] = {"0", "-0", "1e-320", "1e-9", "0.999999999", "1", "1e9",
+	                                     "-1e9", "1e308", "1e999", "-1"};
+	fuzz_stats stats = {0};
+	buf b = {0};
+	for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
+		for (size_t v = 0; v < sizeof values / sizeof values[0]; ++v) {
+			const char *x = values[v];
+			const char *dot = strchr(fields[f], '.');
+			char section[16] = "", key[32] = "";
+			if (dot) {
+				snprintf(section, sizeof section, "%.*s", (int)(dot - fields[f]), fields[f]);
+				snprintf(key, sizeof key, "%s", dot + 1);
+			}
+			bool in_strike = strcmp(section, "strike") == 0;
+			buf_set(&b, "", 0);
+			buf_cat(&b, "{\"format\": \"libpool-scenario/1\"");
+			if (dot && !in_strike)
+				buf_printf(&b, ", \"%s\": {\"%s\": %s}", section, key, x);
+			// Ball 1 moves (vel/omega under test), ball 0 is struck, ball 2 waits near a pocket.
+			buf_printf(&b, ", \"balls\": [{\"id\": 0, \"pos\": [0.635, 0.635]},"
+			               " {\"id\": 1, \"pos\": [1.2, 0.4], \"vel\": [%s, %s], \"omega\": [%s, 1, %s]},"
+			               " {\"id\": 2, \"pos\": [2.45, 1.18]}]",
+			           strcmp(fields[f], "vel") == 0 ? x : "0.3", strcmp(fields[f], "vel") == 0 ? x : "0",
+			           strcmp(fields[f], "omega") == 0 ? x : "0", strcmp(fields[f], "omega") == 0 ? x : "0");
+			buf_printf(&b, ", \"strike\": {\"ball\": 0, \"speed\": %s, \"phi\": %s, \"theta\": %s,"
+			               " \"a\": %s, \"b\": %s}}",
+			           in_strike && strcmp(key, "speed") == 0 ? x : "3",
+			           in_strike && strcmp(key, "phi") == 0 ? x : "10",
+			           in_strike && strcmp(key, "theta") == 0 ? x : "0",
+			           in_strike && strcmp(key, "a") == 0 ? x : "0.005",
+			           in_strike && strcmp(key, "b") == 0 ? x : "-0.01");
+			char label[96];
+			snprintf(label, sizeof label, "%s = %s", fields[f], x);
+			fuzz_one(b.data, b.len, v % 4 == 0, label, &stats);
+		}
+	}
+	free(b.data);
+	printf("[ extremes ] %ld accepted and simulated, %ld rejected\n", stats.accepted, stats.rejected);
+	assert_true(stats.accepted > 0 && stats.rejected > 0);
+}
+
 // Regressions found by this fuzzer, kept as fixed inputs (minimised from the mutant).
 
 // Mutant 487 (seed follow.json) inserted '"":' before a value: the empty key gave the message
@@ -777,11 +833,45 @@ static void test_regression_empty_key_is_named(void **state) {
 	assert_int_equal(stats.rejected, 4);
 }
 
+// Mutant 1017 of POOL_FUZZ_SEED=99 (seed "params") set ball_mass to 4.9e-324: the strike's
+// 0.4 m R^2 underflowed to 0 and the cue ball's spin after the strike was NaN; a moving ball of
+// that mass got a NaN spin at its first cushion. libpool now rejects such a mass.
+static void test_regression_subnormal_mass_is_rejected(void **state) {
+	(void)state;
+	static const char *const docs[] = {
+		"{\"format\": \"libpool-scenario/1\", \"params\": {\"g\": 9.8, \"mu_slide\": 0.25, \"mu_roll\": 0.012,"
+		" \"mu_spin\": 0.02,  \"mu_ball\": 0.05, \"e_ball\": 0.93, \"mu_cushion\": 0.15, \"e_cushion\": 0.8,"
+		"  \"mu_table\": 0.3, \"e_table\": 0.6, \"ball_radius\": 0.0286, \"ball_mass\": 4.9e-324,"
+		"  \"cue_mass\": 0.5}, \"balls\": [{\"id\": 0, \"pos\": [0.635, 0.635]}, {\"id\": 1, \"pos\": [1.905, 0.7]},"
+		"  {\"id\": 2, \"pos\": [2.2, 0.2]}], \"strike\": {\"ball\": 0, \"speed\": 4, \"phi\": 2, \"a\": -0.01,"
+		" \"b\": 0.015}}",
+		"{\"format\": \"libpool-scenario/1\", \"params\": {\"ball_mass\": 4.9e-324},"
+		" \"balls\": [{\"id\": 0, \"pos\": [0.635, 0.635], \"vel\": [3, 0.5]}]}",
+	};
+	fuzz_stats stats = {0};
+	for (size_t i = 0; i < sizeof docs / sizeof docs[0]; ++i) {
+		pool_scenario s;
+		char err[256];
+		assert_int_equal(pool_scenario_parse(docs[i], strlen(docs[i]), &s, err, sizeof err), -1);
+		assert_non_null(strstr(err, "params.ball_mass: "));
+		fuzz_one(docs[i], strlen(docs[i]), false, "subnormal mass", &stats);
+	}
+	// A tiny but normal mass still works, and the shot stays finite (checked by fuzz_one).
+	const char *normal_strike = "{\"format\": \"libpool-scenario/1\", \"params\": {\"ball_mass\": 1e-300},"
+	                            " \"balls\": [{\"id\": 0, \"pos\": [0.635, 0.635]}, {\"id\": 1, \"pos\": [1.9, 0.7]}],"
+	                            " \"strike\": {\"ball\": 0, \"speed\": 4, \"phi\": 3, \"a\": 0.01}}";
+	fuzz_one(normal_strike, strlen(normal_strike), false, "tiny normal mass", &stats);
+	assert_int_equal(stats.rejected, 2);
+	assert_int_equal(stats.accepted, 1);
+}
+
 static void test_mutants(void **state) {
 	(void)state;
 	long cases = fuzz_case_count();
 	fuzz_stats stats = {0};
 	buf b = {0};
+	const char *print_env = getenv("POOL_FUZZ_PRINT");
+	long print_case = print_env && *print_env ? strtol(print_env, NULL, 10) : -1;
 	rng_state = 0x706F6F6C2D66757Aull; // "pool-fuz": fixed, so every run sees the same mutants
 	const char *seed_env = getenv("POOL_FUZZ_SEED"); // for exploring; ctest never sets it
 	if (seed_env && *seed_env)
@@ -795,6 +885,8 @@ static void test_mutants(void **state) {
 			mutate_once(&b);
 		char label[96];
 		snprintf(label, sizeof label, "mutant %ld (seed %s)", c, seeds.names[k]);
+		if (print_case == c) // POOL_FUZZ_PRINT=N: show mutant N to turn it into a regression case
+			fprintf(stderr, "%s:\n%.*s\n", label, (int)b.len, b.data);
 		fuzz_one(b.data, b.len, c % 16 == 0, label, &stats);
 	}
 	free(b.data);
@@ -819,7 +911,9 @@ static int teardown(void **state) {
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_seeds_are_valid),
+		cmocka_unit_test(test_every_field_at_extremes),
 		cmocka_unit_test(test_regression_empty_key_is_named),
+		cmocka_unit_test(test_regression_subnormal_mass_is_rejected),
 		cmocka_unit_test(test_mutants),
 	};
 	return cmocka_run_group_tests(tests, setup, teardown);
