@@ -17,10 +17,12 @@ DATA="$ROOT/tests/lcm/data"
 SERVER=$!
 trap 'kill $SERVER 2>/dev/null || true' EXIT
 sleep 0.3
+# The labels count the events pool-sim produces for each scenario, so they follow the engine.
+events() { "$BUILD/tools/pool-sim" "$1" --summary 2>&1 >/dev/null | sed -n 's/^pool-sim: \([0-9]*\) events.*/\1/p'; }
 "$BUILD/tools/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/short.json" \
-  --name "short shot (1 ball, 3 events)" "$@"
+  --name "short shot (1 ball, $(events "$DATA/short.json") events)" "$@"
 "$BUILD/tools/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/break.json" \
-  --name "break (16 balls, 229 events)" "$@"
+  --name "break (16 balls, $(events "$DATA/break.json") events)" "$@"
 kill -TERM $SERVER
 wait $SERVER || true
 tail -1 "${TMPDIR:-/tmp}/pool-shot-server-bench.log"
