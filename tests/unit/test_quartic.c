@@ -520,6 +520,58 @@ static void tq_expand(long double lead, int n_real, const long double *real, int
 		out[k] = p[k];
 }
 
+// Cluster criteria for tq_reference, on neighbouring sorted reference roots lo <= hi.
+// Random products: two starting points polished into one root.
+static bool tq_same_root(long double lo, long double hi) {
+	return hi == lo;
+}
+
+// Clustered products: polished into one root, clustered beyond what the reference resolves.
+static bool tq_unresolved_roots(long double lo, long double hi) {
+	return !(hi - lo > 1e-12L * fabsl(hi));
+}
+
+// Reference for a product with known real roots real[0..n_real): each polished by Newton in
+// long double on the ROUNDED coefficients c (so the reference is the exact root of what the
+// solver sees), with its condition number, sorted ascending together. Returns true when the case
+// is ill-conditioned: a root with kappa u > 1e-9 or moved more than 1e-6 relative by the polish,
+// or two neighbouring roots that `clustered` judges one.
+static bool tq_reference(const double c[5], int n_real, const long double *real,
+                         bool (*clustered)(long double lo, long double hi), long double ref[4], double kap[4]) {
+	bool ill = false;
+	for (int i = 0; i < n_real; ++i) {
+		long double x = real[i];
+		for (int it = 0; it < 30; ++it) {
+			long double f = 0.0L, d = 0.0L;
+			for (int k = 0; k < 5; ++k) {
+				d = d * x + f;
+				f = f * x + c[k];
+			}
+			if (d == 0.0L)
+				break;
+			x -= f / d;
+		}
+		ref[i] = x;
+		kap[i] = tq_kappa(c, x, NULL);
+		if (!(kap[i] * tq_u <= 1e-9) || fabsl(x - real[i]) > 1e-6L * fabsl(real[i]))
+			ill = true;
+	}
+	// Sort the reference (insertion) with its condition numbers.
+	for (int i = 1; i < n_real; ++i)
+		for (int j = i; j > 0 && ref[j - 1] > ref[j]; --j) {
+			long double tr = ref[j];
+			ref[j] = ref[j - 1];
+			ref[j - 1] = tr;
+			double tk = kap[j];
+			kap[j] = kap[j - 1];
+			kap[j - 1] = tk;
+		}
+	for (int i = 1; i < n_real; ++i)
+		if (clustered(ref[i - 1], ref[i]))
+			ill = true;
+	return ill;
+}
+
 static void test_random_products(void **state) {
 	(void)state;
 	int checked = 0, skipped = 0;
@@ -545,37 +597,7 @@ static void test_random_products(void **state) {
 		// Reference: the known real roots polished by Newton on the ROUNDED coefficients.
 		long double ref[4];
 		double kap[4];
-		bool ill = near_real;
-		for (int i = 0; i < n_real; ++i) {
-			long double x = real[i];
-			for (int it = 0; it < 30; ++it) {
-				long double f = 0.0L, d = 0.0L;
-				for (int k = 0; k < 5; ++k) {
-					d = d * x + f;
-					f = f * x + c[k];
-				}
-				if (d == 0.0L)
-					break;
-				x -= f / d;
-			}
-			ref[i] = x;
-			kap[i] = tq_kappa(c, x, NULL);
-			if (!(kap[i] * tq_u <= 1e-9) || fabsl(x - real[i]) > 1e-6L * fabsl(real[i]))
-				ill = true;
-		}
-		// Sort the reference (insertion) with its condition numbers.
-		for (int i = 1; i < n_real; ++i)
-			for (int j = i; j > 0 && ref[j - 1] > ref[j]; --j) {
-				long double tr = ref[j];
-				ref[j] = ref[j - 1];
-				ref[j - 1] = tr;
-				double tk = kap[j];
-				kap[j] = kap[j - 1];
-				kap[j - 1] = tk;
-			}
-		for (int i = 1; i < n_real; ++i)
-			if (ref[i] == ref[i - 1])
-				ill = true; // two starting points polished into one root: clustered
+		bool ill = tq_reference(c, n_real, real, tq_same_root, ref, kap) || near_real;
 		double r[4];
 		int n = pool_quartic_real_roots(c, r);
 		assert_true(n >= 0 && n <= 4);
@@ -672,36 +694,7 @@ static void test_clustered_products(void **state) {
 			c[k] = (double)cl[k];
 		long double ref[4];
 		double kap[4];
-		bool ill = near_real;
-		for (int i = 0; i < n_real; ++i) {
-			long double x = real[i];
-			for (int it = 0; it < 30; ++it) {
-				long double f = 0.0L, d = 0.0L;
-				for (int k = 0; k < 5; ++k) {
-					d = d * x + f;
-					f = f * x + c[k];
-				}
-				if (d == 0.0L)
-					break;
-				x -= f / d;
-			}
-			ref[i] = x;
-			kap[i] = tq_kappa(c, x, NULL);
-			if (!(kap[i] * tq_u <= 1e-9) || fabsl(x - real[i]) > 1e-6L * fabsl(real[i]))
-				ill = true;
-		}
-		for (int i = 1; i < n_real; ++i)
-			for (int j = i; j > 0 && ref[j - 1] > ref[j]; --j) {
-				long double tr = ref[j];
-				ref[j] = ref[j - 1];
-				ref[j - 1] = tr;
-				double tk = kap[j];
-				kap[j] = kap[j - 1];
-				kap[j - 1] = tk;
-			}
-		for (int i = 1; i < n_real; ++i)
-			if (!(ref[i] - ref[i - 1] > 1e-12L * fabsl(ref[i])))
-				ill = true; // polished into one root: clustered beyond what the reference resolves
+		bool ill = tq_reference(c, n_real, real, tq_unresolved_roots, ref, kap) || near_real;
 		double r[4];
 		int n = pool_quartic_real_roots(c, r);
 		assert_true(n >= 0 && n <= 4);
