@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "contact_tracker.h"
+#include "engine_state.h"
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
 #include "scenario.h"
@@ -64,8 +64,9 @@ struct Ball {
 };
 
 /// A pool shot simulated by Bullet.
-class Engine {
+class Engine : public pool_plugin::StepperState {
 public:
+	// events(), stats(), error() and the members every stepped engine has: StepperState.
 	Engine() = default;
 	~Engine();
 	Engine(const Engine &) = delete;
@@ -79,12 +80,6 @@ public:
 	bool run_to_rest(double max_time);
 	/// Ball states as the plugin ABI wants them.
 	int balls(pool_engine_ball *out, int capacity) const;
-	/// Events so far.
-	int events(pool_engine_event *out, int capacity) const;
-	/// Counters.
-	void stats(pool_engine_stats *out) const;
-	/// Message of the last failure.
-	const std::string &error() const { return error_; }
 
 	/// Friction of a pair of our objects (libpool's mu of that pair).
 	double pair_friction(const Material &a, const Material &b) const;
@@ -107,10 +102,6 @@ private:
 	void report(int32_t type, int32_t a, int32_t b, double t);
 
 	Settings settings_{};
-	pool_params params_{};
-	bool airborne_ = false;
-	double dt_ = 1e-3;
-	TableGeometry table_;
 
 	// Bullet objects, created in build() and torn down in the destructor in reverse order.
 	std::unique_ptr<btDefaultCollisionConfiguration> config_;
@@ -126,15 +117,7 @@ private:
 	std::vector<std::unique_ptr<btRigidBody>> rails_;
 	std::vector<Material> rail_materials_;
 	std::vector<std::unique_ptr<Ball>> balls_;
-
-	pool_plugin::ContactTracker ball_contacts_; ///< ball pairs (i < j) in contact
-	pool_plugin::ContactTracker rail_contacts_; ///< (ball, segment) pairs in contact
-	std::vector<uint8_t> impact_; ///< per ball: hits a ball or cushion in this step
-	std::vector<pool_engine_event> events_;
 	std::vector<pool_engine_event> pending_; ///< this step's events, sorted before publishing
-	int64_t steps_ = 0;
-	double max_penetration_ = 0.0;
-	std::string error_;
 };
 
 } // namespace pool_bullet

@@ -1,14 +1,19 @@
 // Engine-independent pieces of a time-stepped plugin's state: the rolling-resistance
-// hysteresis, event records and the copy-out of a list the ABI asks for.
+// hysteresis, event records, the copy-out of a list the ABI asks for, and the members and
+// accessors every time-stepped engine has (StepperState).
 #ifndef POOL_PLUGIN_ENGINE_STATE_H
 #define POOL_PLUGIN_ENGINE_STATE_H
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "contact_tracker.h"
+#include "pool/pool.h"
 #include "pool_engine_plugin.h"
+#include "table_geometry.h"
 
 namespace pool_plugin {
 
@@ -46,6 +51,35 @@ inline void fill_stats(int64_t steps, double dt, double max_penetration, pool_en
 	out->max_penetration = max_penetration;
 	out->sim_time = double(steps) * dt;
 }
+
+/// What a time-stepped engine keeps besides its own world (the ODE and Bullet engines derive
+/// from it): parameters, table, contact bookkeeping, the event record and the counters, with
+/// the ABI's accessors for them.
+class StepperState {
+public:
+	/// Events so far.
+	int events(pool_engine_event *out, int capacity) const { return copy_out(events_, out, capacity); }
+	/// Counters.
+	void stats(pool_engine_stats *out) const { fill_stats(steps_, dt_, max_penetration_, out); }
+	/// Message of the last failure.
+	const std::string &error() const { return error_; }
+
+protected:
+	StepperState() = default;
+	~StepperState() = default; // not deleted through this base
+
+	pool_params params_{};
+	bool airborne_ = false;
+	double dt_ = 1e-3;
+	TableGeometry table_;
+	ContactTracker ball_contacts_;          ///< ball pairs (i < j) in contact
+	ContactTracker rail_contacts_;          ///< (ball, segment) pairs in contact
+	std::vector<uint8_t> impact_;           ///< per ball: hits a ball or cushion in this step
+	std::vector<pool_engine_event> events_; ///< events so far, in time order
+	int64_t steps_ = 0;
+	double max_penetration_ = 0.0;
+	std::string error_;
+};
 
 } // namespace pool_plugin
 

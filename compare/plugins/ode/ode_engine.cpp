@@ -522,12 +522,4 @@ int Engine::balls(pool_engine_ball *out, int capacity) const {
 	return n;
 }
 
-int Engine::events(pool_engine_event *out, int capacity) const {
-	return pool_plugin::copy_out(events_, out, capacity);
-}
-
-void Engine::stats(pool_engine_stats *out) const {
-	pool_plugin::fill_stats(steps_, dt_, max_penetration_, out);
-}
-
 } // namespace pool_ode

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "contact_tracker.h"
+#include "engine_state.h"
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
 #include "scenario.h"
@@ -49,8 +49,9 @@ struct Ball {
 };
 
 /// A pool shot simulated by ODE.
-class Engine {
+class Engine : public pool_plugin::StepperState {
 public:
+	// events(), stats(), error() and the members every stepped engine has: StepperState.
 	Engine() = default;
 	~Engine();
 	Engine(const Engine &) = delete;
@@ -64,12 +65,6 @@ public:
 	bool run_to_rest(double max_time);
 	/// Ball states as the plugin ABI wants them.
 	int balls(pool_engine_ball *out, int capacity) const;
-	/// Events so far.
-	int events(pool_engine_event *out, int capacity) const;
-	/// Counters.
-	void stats(pool_engine_stats *out) const;
-	/// Message of the last failure.
-	const std::string &error() const { return error_; }
 
 	/// Contact generation for one candidate pair (dSpaceCollide's callback).
 	void near(dGeomID g1, dGeomID g2);
@@ -84,23 +79,12 @@ private:
 	void report(int32_t type, int32_t a, int32_t b, double t);
 
 	Settings settings_{};
-	pool_params params_{};
-	bool airborne_ = false;
-	double dt_ = 1e-3;
-	TableGeometry table_;
 	dWorldID world_ = nullptr;
 	dSpaceID space_ = nullptr;
 	dJointGroupID contacts_ = nullptr;
 	std::vector<Ball> balls_;
 	std::vector<dGeomID> rails_;
-	pool_plugin::ContactTracker ball_contacts_; ///< ball pairs (i < j) in contact
-	pool_plugin::ContactTracker rail_contacts_; ///< (ball, segment) pairs in contact
-	std::vector<uint8_t> impact_;         ///< per ball: in an impact in this step
-	std::vector<pool_engine_event> events_;
-	int64_t steps_ = 0;
-	double max_penetration_ = 0.0;
 	bool ode_ref_ = false;
-	std::string error_;
 };
 
 } // namespace pool_ode
