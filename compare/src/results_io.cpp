@@ -102,6 +102,50 @@ std::string fmt(double x, const char *format = "%.3g") {
 	return buf;
 }
 
+// A table as markdown or as text in columns two spaces apart. align_markdown and align_text
+// hold one 'l' (left) or 'r' (right) per column of head. A row shorter than head (a failed run:
+// its message in place of the numbers) reads left and widens only the first three columns.
+std::string render_table(const std::vector<std::string> &head, const std::vector<std::vector<std::string>> &rows,
+                         bool markdown, const std::string &align_markdown, const std::string &align_text) {
+	std::ostringstream out;
+	if (markdown) {
+		out << "|";
+		for (const std::string &h : head)
+			out << " " << h << " |";
+		out << "\n|";
+		for (size_t i = 0; i < head.size(); ++i)
+			out << (align_markdown[i] == 'r' ? "---:|" : "---|");
+		out << "\n";
+		for (const auto &row : rows) {
+			out << "|";
+			for (size_t i = 0; i < head.size(); ++i)
+				out << " " << (i < row.size() ? row[i] : "") << " |";
+			out << "\n";
+		}
+		return out.str();
+	}
+	std::vector<size_t> width(head.size());
+	for (size_t i = 0; i < head.size(); ++i)
+		width[i] = head[i].size();
+	for (const auto &row : rows)
+		for (size_t i = 0; i < row.size() && i < head.size(); ++i)
+			if (row.size() == head.size() || i < 3)
+				width[i] = std::max(width[i], row[i].size());
+	auto line = [&](const std::vector<std::string> &row) {
+		for (size_t i = 0; i < row.size(); ++i) {
+			const bool left = align_text[i] == 'l' || row.size() != head.size();
+			const std::string &cell = row[i];
+			const std::string pad(cell.size() < width[i] ? width[i] - cell.size() : 0, ' ');
+			out << (i ? "  " : "") << (left ? cell + (i + 1 < row.size() ? pad : "") : pad + cell);
+		}
+		out << "\n";
+	};
+	line(head);
+	for (const auto &row : rows)
+		line(row);
+	return out.str();
+}
+
 } // namespace
 
 std::string record_json(const Record &r) {
@@ -171,43 +215,10 @@ std::string results_table(const std::vector<Record> &records, bool markdown) {
 		                fmt(r.max_penetration, "%.2e"), r.spread_runs ? fmt(r.spread_rms, "%.2e") : "-",
 		                r.reference});
 	}
-	std::ostringstream out;
-	if (markdown) {
-		out << "|";
-		for (const std::string &h : head)
-			out << " " << h << " |";
-		out << "\n|";
-		for (size_t i = 0; i < head.size(); ++i)
-			out << (i < 2 || i + 1 == head.size() ? "---|" : "---:|");
-		out << "\n";
-		for (const auto &row : rows) {
-			out << "|";
-			for (size_t i = 0; i < head.size(); ++i)
-				out << " " << (i < row.size() ? row[i] : "") << " |";
-			out << "\n";
-		}
-		return out.str();
-	}
-	std::vector<size_t> width(head.size());
-	for (size_t i = 0; i < head.size(); ++i)
-		width[i] = head[i].size();
-	for (const auto &row : rows)
-		for (size_t i = 0; i < row.size() && i < head.size(); ++i)
-			if (row.size() == head.size() || i < 3)
-				width[i] = std::max(width[i], row[i].size());
-	auto line = [&](const std::vector<std::string> &row) {
-		for (size_t i = 0; i < row.size(); ++i) {
-			const bool left = i < 2 || i + 1 == head.size() || row.size() != head.size();
-			const std::string &cell = row[i];
-			const std::string pad(cell.size() < width[i] ? width[i] - cell.size() : 0, ' ');
-			out << (i ? "  " : "") << (left ? cell + (i + 1 < row.size() ? pad : "") : pad + cell);
-		}
-		out << "\n";
-	};
-	line(head);
-	for (const auto &row : rows)
-		line(row);
-	return out.str();
+	// Names, the dt and the reference read left; the numbers right.
+	std::string align(head.size(), 'r');
+	align[0] = align[1] = align.back() = 'l';
+	return render_table(head, rows, markdown, align, align);
 }
 
 void fill_consistency(std::vector<Record> *records) {
@@ -273,35 +284,7 @@ std::string accuracy_summary(const std::vector<Record> &records, double toleranc
 	}
 	const std::vector<std::string> head = {"scenario", "engine", "largest dt within " + fmt(tolerance, "%g") + " m",
 	                                       "libpool (error, sim s / CPU s)", "libpool faster by", "reference"};
-	std::ostringstream out;
-	if (markdown) {
-		out << "| " << head[0];
-		for (size_t i = 1; i < head.size(); ++i)
-			out << " | " << head[i];
-		out << " |\n|---|---|---|---|---:|---|\n";
-		for (const auto &row : rows) {
-			out << "|";
-			for (const std::string &c : row)
-				out << " " << c << " |";
-			out << "\n";
-		}
-		return out.str();
-	}
-	std::vector<size_t> width(head.size());
-	for (size_t i = 0; i < head.size(); ++i)
-		width[i] = head[i].size();
-	for (const auto &row : rows)
-		for (size_t i = 0; i < row.size(); ++i)
-			width[i] = std::max(width[i], row[i].size());
-	auto line = [&](const std::vector<std::string> &row) {
-		for (size_t i = 0; i < row.size(); ++i)
-			out << (i ? "  " : "") << row[i] << std::string(i + 1 < row.size() ? width[i] - row[i].size() : 0, ' ');
-		out << "\n";
-	};
-	line(head);
-	for (const auto &row : rows)
-		line(row);
-	return out.str();
+	return render_table(head, rows, markdown, "llllrl", "llllll");
 }
 
 std::string machine_description() {
