@@ -192,8 +192,7 @@ int main(int argc, char **argv) {
 	int count = pool_rack(o.kind, &table, &params, o.gap, balls, 32);
 	if (count < 0) {
 		fprintf(stderr, "pool-rack: %s\n", pool_result_str((pool_result)count));
-		return count == POOL_ERR_INTERNAL || count == POOL_ERR_OUT_OF_MEMORY ? POOL_EXIT_INTERNAL
-		                                                                      : POOL_EXIT_BAD_INPUT;
+		return pool_cli_result_status(count);
 	}
 	char *json = scenario_json(&o, balls, count, params.ball_radius);
 	if (!json) {

@@ -178,8 +178,7 @@ int main(int argc, char **argv) {
 		fprintf(stderr, "pool-sim: %s\n", perr.message[0] ? perr.message : pool_result_str(r));
 		pool_sim_destroy(sim);
 		pool_scenario_free(&scenario);
-		return r == POOL_ERR_OUT_OF_MEMORY || r == POOL_ERR_INTERNAL ? POOL_EXIT_INTERNAL
-		                                                              : POOL_EXIT_BAD_INPUT;
+		return pool_cli_result_status(r);
 	}
 
 	sim_event_hook hook = NULL;

@@ -9,6 +9,11 @@
 #include <string.h>
 
 #include "atomic_file.h"
+#include "pool/base.h"
+
+int pool_cli_result_status(int result) {
+	return result == POOL_ERR_OUT_OF_MEMORY || result == POOL_ERR_INTERNAL ? POOL_EXIT_INTERNAL : POOL_EXIT_BAD_INPUT;
+}
 
 int pool_cli_usage_error(const char *program, const char *format, ...) {
 	va_list args;

@@ -14,6 +14,10 @@ extern "C" {
 /// Exit status for an internal failure (out of memory, an output that cannot be written).
 #define POOL_EXIT_INTERNAL 1
 
+/// Exit status for a failing libpool result (a negative pool_result): POOL_EXIT_INTERNAL for
+/// out of memory and internal errors, POOL_EXIT_BAD_INPUT for the rest (the input broke a rule).
+int pool_cli_result_status(int result);
+
 /// Prints "PROGRAM: <format, ...>" and "Try 'PROGRAM --help'." on standard error; returns
 /// POOL_EXIT_BAD_INPUT.
 int pool_cli_usage_error(const char *program, const char *format, ...)
