@@ -18,6 +18,20 @@ static void pool_lcm_on_stop_signal(int signal_number)
 	pool_lcm_stop_flag = 1;
 }
 
+bool pool_lcm_url_option(int argc, char **argv, int *i, const char **url)
+{
+	const char *a = argv[*i];
+	if (strcmp(a, "--lcm-url") == 0 && *i + 1 < argc) {
+		*url = argv[++*i];
+		return true;
+	}
+	if (strncmp(a, "--lcm-url=", 10) == 0) {
+		*url = a + 10;
+		return true;
+	}
+	return false;
+}
+
 void pool_lcm_catch_stop_signals(void)
 {
 	struct sigaction action;

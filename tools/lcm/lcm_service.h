@@ -1,5 +1,6 @@
 // The plumbing of an LCM command that runs until told to stop (pool-shot-server,
-// pool-lcm-subscribe): stop flags set by SIGINT/SIGTERM, opening the URL, waiting for datagrams.
+// pool-lcm-subscribe): the --lcm-url option, stop flags set by SIGINT/SIGTERM, opening the URL,
+// waiting for datagrams.
 #ifndef POOL_TOOLS_LCM_SERVICE_H
 #define POOL_TOOLS_LCM_SERVICE_H
 
@@ -11,6 +12,11 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/// Recognises the URL option at argv[*i]: "--lcm-url URL" (moving *i onto URL) or
+/// "--lcm-url=URL". Sets *url and returns true; false, changing nothing, for any other argument
+/// (a "--lcm-url" with nothing after it included).
+bool pool_lcm_url_option(int argc, char **argv, int *i, const char **url);
 
 /// Makes SIGINT and SIGTERM set the stop flag instead of killing the process, so the command can
 /// leave its loop and clean up.

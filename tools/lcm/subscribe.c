@@ -83,10 +83,8 @@ int main(int argc, char **argv)
 		if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
 			fputs(usage_text, stdout);
 			return 0;
-		} else if (strcmp(a, "--lcm-url") == 0 && i + 1 < argc) {
-			url = argv[++i];
-		} else if (strncmp(a, "--lcm-url=", 10) == 0) {
-			url = a + 10;
+		} else if (pool_lcm_url_option(argc, argv, &i, &url)) {
+			continue;
 		} else if (strcmp(a, "--count") == 0 && i + 1 < argc) {
 			if (!pool_cli_parse_count(argv[++i], &count)) {
 				fprintf(stderr, "pool-lcm-subscribe: --count: '%s' is not a count >= 0\n", argv[i]);
