@@ -499,10 +499,10 @@ static double tq_signed(double m) {
 	return tq_uniform() < 0.5 ? -m : m;
 }
 
-// Coefficients (a4 first, long double) of lead * prod of factors; each factor is x - r or
-// x^2 - 2 re x + (re^2 + im^2).
+// Coefficients (a4 first) of lead * prod of factors, each factor x - r or
+// x^2 - 2 re x + (re^2 + im^2): built in long double, rounded once to double at the end.
 static void tq_expand(long double lead, int n_real, const long double *real, int n_pairs, const long double (*pairs)[2],
-                      long double out[5]) {
+                      double out[5]) {
 	long double p[5] = {lead, 0, 0, 0, 0}; // p[k]: coefficient of x^(deg - k), built up
 	int deg = 0;
 	for (int i = 0; i < n_real; ++i) {
@@ -517,7 +517,16 @@ static void tq_expand(long double lead, int n_real, const long double *real, int
 		deg += 2;
 	}
 	for (int k = 0; k < 5; ++k)
-		out[k] = p[k];
+		out[k] = (double)p[k];
+}
+
+// True when a complex pair lies within 1e-3 (relative) of the real axis: its real part is then
+// nearly a double root, too ill-conditioned to judge the root count by.
+static bool tq_near_real(int n_pairs, const long double (*pairs)[2]) {
+	bool near_real = false;
+	for (int i = 0; i < n_pairs; ++i)
+		near_real |= fabsl(pairs[i][1]) < 1e-3L * hypotl(pairs[i][0], pairs[i][1]);
+	return near_real;
 }
 
 // Cluster criteria for tq_reference, on neighbouring sorted reference roots lo <= hi.
@@ -582,18 +591,14 @@ static void test_random_products(void **state) {
 		long double real[4], pairs[2][2];
 		for (int i = 0; i < n_real; ++i)
 			real[i] = tq_signed(scale * tq_log_uniform(-3.0, 3.0));
-		bool near_real = false;
 		for (int i = 0; i < n_pairs; ++i) {
 			pairs[i][0] = tq_signed(scale * tq_log_uniform(-3.0, 3.0));
 			pairs[i][1] = scale * tq_log_uniform(-3.0, 3.0);
-			near_real |= fabsl(pairs[i][1]) < 1e-3L * hypotl(pairs[i][0], pairs[i][1]);
 		}
+		bool near_real = tq_near_real(n_pairs, (const long double(*)[2])pairs);
 		long double lead = tq_signed(tq_log_uniform(-6.0, 6.0));
-		long double cl[5];
-		tq_expand(lead, n_real, real, n_pairs, (const long double(*)[2])pairs, cl);
 		double c[5];
-		for (int k = 0; k < 5; ++k)
-			c[k] = (double)cl[k];
+		tq_expand(lead, n_real, real, n_pairs, (const long double(*)[2])pairs, c);
 		// Reference: the known real roots polished by Newton on the ROUNDED coefficients.
 		long double ref[4];
 		double kap[4];
@@ -684,14 +689,9 @@ static void test_clustered_products(void **state) {
 			real[n_real++] = base + tq_signed(im * tq_log_uniform(-2.0, 1.0));
 			real[n_real++] = tq_signed(scale * tq_log_uniform(-4.0, 4.0));
 		}
-		bool near_real = false;
-		for (int i = 0; i < n_pairs; ++i)
-			near_real |= fabsl(pairs[i][1]) < 1e-3L * hypotl(pairs[i][0], pairs[i][1]);
-		long double cl[5];
-		tq_expand(tq_signed(tq_log_uniform(-6.0, 6.0)), n_real, real, n_pairs, (const long double(*)[2])pairs, cl);
+		bool near_real = tq_near_real(n_pairs, (const long double(*)[2])pairs);
 		double c[5];
-		for (int k = 0; k < 5; ++k)
-			c[k] = (double)cl[k];
+		tq_expand(tq_signed(tq_log_uniform(-6.0, 6.0)), n_real, real, n_pairs, (const long double(*)[2])pairs, c);
 		long double ref[4];
 		double kap[4];
 		bool ill = tq_reference(c, n_real, real, tq_unresolved_roots, ref, kap) || near_real;
