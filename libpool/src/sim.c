@@ -421,6 +421,11 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	if (fabs(ball->pos.z - R) > tol)
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
 		                      "balls[%d].pos: z must be the ball radius (%g m): airborne motion not implemented yet", idx, R);
+	// Dropping a vertical velocity silently would simulate another shot than the caller asked for.
+	if (fabs(ball->vel.z) > POOL_APPROACH_EPS)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "balls[%d].vel: vertical velocity %g m/s needs airborne motion, not implemented yet",
+		                      idx, ball->vel.z);
 	const double x = ball->pos.x, y = ball->pos.y;
 	if (x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol)
 		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
@@ -434,7 +439,7 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "balls[%d]: out of memory", idx);
 	pool_ball_state s = *ball;
 	s.pos.z = R;
-	s.vel.z = 0.0; // planar mode: no vertical velocity
+	s.vel.z = 0.0; // planar mode: no vertical velocity (at most POOL_APPROACH_EPS was given)
 	s.motion = POOL_MOTION_STATIONARY;
 	pool_motion_derive(&sim->def.params, &s);
 	sim->n++;

@@ -276,6 +276,7 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("theta_negative", with_(lambda d: d["strike"].update(theta=-5)), "strike.theta"),
             ("strike_moving", with_(ball(0, vel=[1.0, 0.0])), "strike.ball"),
             ("below_cloth", with_(ball(1, pos=[1.9, 0.6, 0.01])), "balls[1].pos"),
+            ("vertical_velocity", with_(ball(1, vel=[0.0, 0.0, 0.5])), "balls[1].vel: vertical velocity 0.5 m/s"),
             ("radius_too_big", with_(lambda d: d.update(params={"ball_radius": 1.0})), "params.ball_radius"),
         ]
         for name, text, expect in cases:

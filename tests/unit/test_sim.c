@@ -296,6 +296,15 @@ static void test_validation(void **state) {
 	pool_ball_state nan = rest(5, NAN, 0.5);
 	assert_int_equal(pool_sim_add_ball(sim, &nan, &err), POOL_ERR_NON_FINITE);
 	assert_string_equal(err.message, "balls[2].pos: must be finite");
+	pool_ball_state rising = rest(7, 2.0, 0.5);
+	rising.vel = (pool_vec3){1.0, 0.0, 3.0}; // planar mode cannot honour v_z: refused, not dropped
+	assert_int_equal(pool_sim_add_ball(sim, &rising, &err), POOL_ERR_INVALID_ARGUMENT);
+	assert_string_equal(err.message,
+	                    "balls[2].vel: vertical velocity 3 m/s needs airborne motion, not implemented yet");
+	rising.vel.z = 1e-12; // rounding noise of a caller's own arithmetic is accepted
+	assert_int_equal(pool_sim_add_ball(sim, &rising, &err), POOL_OK);
+	assert_int_equal(pool_sim_ball_count(sim), 3);
+	assert_true(pool_sim_balls(sim)[2].vel.z == 0.0);
 	// Touching within POOL_TOUCH_TOLERANCE is allowed (racks).
 	pool_ball_state touch = rest(6, 1.0 + 2 * R - 0.5e-9, 0.5);
 	assert_int_equal(pool_sim_add_ball(sim, &touch, &err), POOL_OK);
