@@ -50,8 +50,14 @@ typedef struct pool_engine_event {
 	double t;        ///< s
 	int32_t type;    ///< pool_engine_event_type
 	int32_t ball_a;  ///< id
-	int32_t ball_b;  ///< id of the other ball, or -1
+	int32_t ball_b;  ///< id of the other ball; for BALL_CUSHION the cushion as
+	                 ///< POOL_ENGINE_CUSHION(rail), or -1 if the engine does not say; else -1
 } pool_engine_event;
+
+/// ball_b of a ball-cushion event that says which rail was hit: rail 0 south (y = 0), 1 north
+/// (y = W), 2 west (x = 0), 3 east (x = L), as libpool's pool_rail. -1 still means "a cushion"
+/// (plugins written before this convention), so the struct and ABI version are unchanged.
+#define POOL_ENGINE_CUSHION(rail) (-2 - (int32_t)(rail))
 
 /// Counters an engine reports.
 typedef struct pool_engine_stats {

@@ -42,8 +42,11 @@ struct Record {
 	double stop_time_error = kNone;          ///< s, each ball's last roll_stop
 	double collision_time_error = kNone;     ///< s, each reference collision vs the nearest same one
 	int unmatched_events = 0;            ///< reference slide_roll / stop events the engine lacks
-	int missed_collisions = 0;           ///< reference ball pairs / cushion contacts not produced
-	int phantom_collisions = 0;          ///< pairs / cushion contacts the reference does not have
+	int missed_collisions = 0;           ///< reference ball pairs / (ball, rail) contacts not produced
+	int phantom_collisions = 0;          ///< pairs / (ball, rail) contacts the reference does not have
+	bool cushions_by_rail = true;        ///< false: the engine names no rail, cushion contacts keyed by ball only
+	int simultaneous_contacts = 0;       ///< reference ball-ball contacts at the same instant as another
+	                                     ///< of the same ball (libpool resolves them in sequence)
 	int collisions_reference = 0;        ///< collision events of the reference
 	int collisions_engine = 0;           ///< collision events the engine reported
 	int pocket_mismatches = 0;           ///< balls pocketed in one and not the other
@@ -63,11 +66,25 @@ struct Record {
 	double speed() const { return sim_seconds / cpu_seconds; }
 };
 
+/// An open interval of time (s).
+struct TimeWindow {
+	double from;
+	double to;
+};
+
+/// The instants at which directions and energies are not compared: from each reference
+/// collision to the engine's nearest collision of the same key (same pair, same ball and rail),
+/// and around every engine collision, widened by max(3 dt, 1 ms) (dt NaN: 1 ms).
+std::vector<TimeWindow> collision_windows(const std::vector<Event> &reference, const std::vector<Event> &engine,
+                                          double dt);
+
 /// Accumulates the comparison of sampled engine states with the reference.
 class StateErrors {
 public:
-	StateErrors(const pool_params &params, const std::vector<double> &collision_times, double dt);
-	/// Compares one instant; engine balls are matched by id.
+	/// skip: instants where directions and energies are not compared (collision_windows).
+	StateErrors(const pool_params &params, const std::vector<TimeWindow> &skip);
+	/// Compares one instant (the engine's time t; reference state at the same t); engine balls
+	/// are matched by id.
 	void add(double t, const std::vector<BallSample> &engine, const std::vector<BallSample> &reference);
 
 	double position_error = 0.0;  ///< m, max over instants and balls (xy)
@@ -78,8 +95,7 @@ public:
 
 private:
 	pool_params params_;
-	std::vector<double> collision_times_;
-	double guard_;
+	std::vector<TimeWindow> skip_;
 };
 
 /// Largest xy distance between the same balls of two states (infinity if a ball is missing).

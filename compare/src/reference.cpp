@@ -45,7 +45,10 @@ public:
 			ev.t = list[i].time;
 			ev.type = type;
 			ev.ball_a = list[i].ball_count > 0 ? after[0].id : -1;
-			ev.ball_b = list[i].ball_count > 1 && type == POOL_ENGINE_EVENT_BALL_BALL ? after[1].id : -1;
+			ev.ball_b = list[i].ball_count > 1 && type == POOL_ENGINE_EVENT_BALL_BALL ? after[1].id
+			            : type == POOL_ENGINE_EVENT_BALL_CUSHION && list[i].rail != POOL_RAIL_NONE
+			                ? POOL_ENGINE_CUSHION(list[i].rail)
+			                : -1;
 			events.push_back(ev);
 		}
 		return true;

@@ -110,6 +110,11 @@ bool is_collision(int type) {
 	return type == POOL_ENGINE_EVENT_BALL_BALL || type == POOL_ENGINE_EVENT_BALL_CUSHION;
 }
 
+// The time the engine reached (its sim_time), or `asked` if the plugin reports nothing usable.
+double engine_time(const pool_engine_stats &stats, double asked) {
+	return std::isfinite(stats.sim_time) && stats.sim_time >= 0.0 ? stats.sim_time : asked;
+}
+
 double median(std::vector<double> v) {
 	std::sort(v.begin(), v.end());
 	const size_t n = v.size();
@@ -157,30 +162,41 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 	rec.event_driven = api->event_driven != 0;
 	rec.dt = rec.event_driven ? kNone : settings.dt;
 
-	std::vector<double> collision_times;
-	for (const Event &e : ref.events)
-		if (is_collision(e.type))
-			collision_times.push_back(e.t);
-
-	// The measured run: states compared at the sample instants, then the end of the shot.
+	// The measured run: states compared at the sample instants, then the end of the shot. An
+	// engine stops at a step boundary (the first at or after the instant asked for), so each state
+	// is compared with the reference at the time the engine actually reached.
 	std::vector<double> cpu_times;
 	std::vector<BallSample> final_balls;
 	{
 		EngineRun run(api);
 		if (!run.create(scenario.json, settings.dt, &rec.error))
 			return rec;
-		StateErrors errors(params, collision_times, rec.dt);
+		struct Sample {
+			double t;
+			std::vector<BallSample> engine, reference;
+		};
+		std::vector<Sample> samples;
 		for (double t : sample_times(ref, settings.max_samples)) {
 			if (t > 0.0 && !run.advance(t, &rec.error))
 				return rec;
-			errors.add(t, run.balls(), ref.state_at(t));
+			const double reached = t > 0.0 ? engine_time(run.stats(), t) : 0.0;
+			samples.push_back({reached, run.balls(), ref.state_at(std::min(reached, ref.end_time))});
 		}
 		if (!run.finish(ref, max_time, &rec.error))
 			return rec;
 		final_balls = run.balls();
-		const std::vector<BallSample> ref_final = ref.state_at(ref.end_time);
-		errors.add(ref.end_time, final_balls, ref_final);
 		const pool_engine_stats stats = run.stats();
+		// A shot cut at max_time: the reference where the engine stopped (within a step of it).
+		// A shot run to rest: both at rest, whenever each got there.
+		const double t_end = ref.at_rest ? ref.end_time : std::min(engine_time(stats, ref.end_time), ref.end_time);
+		const std::vector<BallSample> ref_final = ref.state_at(t_end);
+		samples.push_back({ref.at_rest ? std::max(ref.end_time, engine_time(stats, ref.end_time)) : t_end,
+		                   final_balls, ref_final});
+		const std::vector<Event> engine_events = run.events();
+
+		StateErrors errors(params, collision_windows(ref.events, engine_events, rec.dt));
+		for (const Sample &sample : samples)
+			errors.add(sample.t, sample.engine, sample.reference);
 
 		rec.setup_cpu_seconds = run.setup_cpu;
 		cpu_times.push_back(run.cpu);
@@ -193,7 +209,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 		rec.energy_error = errors.energy_error;
 		rec.max_penetration = std::max({0.0, stats.max_penetration, errors.penetration});
 		rec.pocket_mismatches = pocket_mismatches(final_balls, ref_final);
-		compare_events(run.events(), ref, &rec);
+		compare_events(engine_events, ref, &rec);
 		if (errors.missing_balls)
 			rec.error = "the engine did not report every ball";
 	}

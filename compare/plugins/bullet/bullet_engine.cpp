@@ -499,10 +499,12 @@ void Engine::update_contacts(double t_detect) {
 				report(POOL_ENGINE_EVENT_BALL_BALL, balls_[i]->id, balls_[j]->id, t_detect);
 		} else if (a->kind == kBall && b->kind == kCushion) {
 			if (rail_contacts_.see(size_t(a->index), size_t(b->index)))
-				report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[size_t(a->index)]->id, -1, t_detect);
+				report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[size_t(a->index)]->id,
+				       POOL_ENGINE_CUSHION(table_.segments[size_t(b->index)].rail), t_detect);
 		} else if (b->kind == kBall && a->kind == kCushion) {
 			if (rail_contacts_.see(size_t(b->index), size_t(a->index)))
-				report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[size_t(b->index)]->id, -1, t_detect);
+				report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[size_t(b->index)]->id,
+				       POOL_ENGINE_CUSHION(table_.segments[size_t(a->index)].rail), t_detect);
 		}
 	}
 	// A contact ends only once the gap exceeds release_gap, so a resting contact that flickers

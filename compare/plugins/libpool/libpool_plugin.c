@@ -145,7 +145,10 @@ static int events(void *engine, pool_engine_event *out, int capacity) {
 			out[n].t = list[i].time;
 			out[n].type = type;
 			out[n].ball_a = list[i].ball_count > 0 ? s[0].id : -1;
-			out[n].ball_b = type == POOL_ENGINE_EVENT_BALL_BALL && list[i].ball_count > 1 ? s[1].id : -1;
+			out[n].ball_b = type == POOL_ENGINE_EVENT_BALL_BALL && list[i].ball_count > 1 ? s[1].id
+			                : type == POOL_ENGINE_EVENT_BALL_CUSHION && list[i].rail != POOL_RAIL_NONE
+			                    ? POOL_ENGINE_CUSHION(list[i].rail)
+			                    : -1;
 		}
 		++n;
 	}
@@ -169,7 +172,8 @@ static const pool_engine_api api = {
 	.abi_version = POOL_ENGINE_ABI_VERSION,
 	.name = "libpool",
 	.description = "libpool event-driven, exact closed-form motion between events (PHYSICS.md); "
-	               "rigid cushions, point contacts, no air drag, squirt or swerve",
+	               "rigid cushions, point contacts, no air drag, squirt or swerve; simultaneous contacts "
+	               "are resolved one after the other (pairwise, in a fixed order: one admissible outcome)",
 	.event_driven = 1,
 	.create = create,
 	.advance = advance,

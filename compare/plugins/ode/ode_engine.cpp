@@ -1,4 +1,4 @@
-// The ODE model of a pool shot (see ode_engine.h and /tmp/readme/ode.md for the choices).
+// The ODE model of a pool shot (see ode_engine.h and README.md, "ODE engine plugin", for the choices).
 #include "ode_engine.h"
 
 #include <algorithm>
@@ -237,7 +237,7 @@ void Engine::near(dGeomID g1, dGeomID g2) {
 		const size_t i = size_t((t1 > 0 ? t1 : t2) - 1);
 		const size_t s = size_t(-(t1 > 0 ? t2 : t1) - 1);
 		if (rail_contacts_.see(i, s))
-			report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[i].id, -1, t);
+			report(POOL_ENGINE_EVENT_BALL_CUSHION, balls_[i].id, POOL_ENGINE_CUSHION(table_.segments[s].rail), t);
 		mu = params_.mu_cushion;
 		e = params_.e_cushion;
 	}
