@@ -47,7 +47,7 @@ static const char usage_text[] =
 	"                     POOL_SHOT (default URL $LCM_DEFAULT_URL, else\n"
 	"                     udpm://239.255.76.67:7667?ttl=0)\n"
 	"  --playback HZ      with LCM, run in real time and publish every ball on POOL_STATE HZ\n"
-	"                     times per simulated second\n"
+	"                     times per simulated second (HZ at most 1000)\n"
 	"  -h, --help         show this help\n"
 	"\n"
 	"Exit status: 0 success, 2 bad input or usage (message names the field), 1 internal error.\n";
@@ -94,6 +94,11 @@ static int parse_options(int argc, char **argv, sim_options *o) {
 			const char *value = argv[++i];
 			if (!pool_cli_parse_double(value, &o->playback_hz) || o->playback_hz <= 0.0)
 				return pool_cli_usage_error(PROGRAM, "--playback: '%s' is not a positive rate in Hz", value);
+#ifdef POOL_HAVE_LCM
+			if (o->playback_hz > POOL_LCM_PLAYBACK_MAX_HZ)
+				return pool_cli_usage_error(PROGRAM, "--playback: %s Hz is above the limit of %g Hz", value,
+				                            POOL_LCM_PLAYBACK_MAX_HZ);
+#endif
 		} else {
 			return pool_cli_usage_error(PROGRAM, "unknown option '%s'", a);
 		}

@@ -208,6 +208,36 @@ static void check_error_shot(void **state)
 	pool_lcm_shot_release(&m);
 }
 
+// The size pool-shot-server checks against --max-answer-bytes before building the answer: the
+// final-states message plus the events' share equals the whole message's encoded size, and the
+// final-states message carries exactly the full one's final states, sim_time and stop_reason.
+static void check_shot_size(void **state)
+{
+	fixture *f = *state;
+	pool_lcm_shot_t full, final;
+	assert_int_equal(pool_lcm_shot_fill(f->sim, 7, 8, 9, &full), 0);
+	assert_int_equal(pool_lcm_shot_fill_final(f->sim, 7, 8, 9, &final), 0);
+	int64_t events = pool_lcm_shot_events_encoded_size(f->sim);
+	assert_true(events > 0);
+	assert_int_equal(pool_lcm_shot_t_encoded_size(&final) + events,
+	                 pool_lcm_shot_t_encoded_size(&full));
+	assert_int_equal(final.num_events, 0);
+	assert_int_equal(final.num_balls, full.num_balls);
+	assert_memory_equal(final.final_states, full.final_states,
+	                    (size_t)full.num_balls * sizeof *full.final_states);
+	assert_true(final.sim_time == full.sim_time);
+	assert_string_equal(final.stop_reason, full.stop_reason);
+	assert_string_equal(final.error, "");
+	// set_error replaces the error (freeing the previous copy) and counts in the size.
+	int before = pool_lcm_shot_t_encoded_size(&final);
+	assert_int_equal(pool_lcm_shot_set_error(&final, "first"), 0);
+	assert_int_equal(pool_lcm_shot_set_error(&final, "too large"), 0);
+	assert_string_equal(final.error, "too large");
+	assert_int_equal(pool_lcm_shot_t_encoded_size(&final), before + 9);
+	pool_lcm_shot_release(&final);
+	pool_lcm_shot_release(&full);
+}
+
 static void check_request_decode(void **state)
 {
 	(void)state;
@@ -262,6 +292,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(check_shot_round_trip, setup_break, teardown),
 		cmocka_unit_test_setup_teardown(check_event_fill, setup_break, teardown),
 		cmocka_unit_test_setup_teardown(check_table_state, setup_cut, teardown),
+		cmocka_unit_test_setup_teardown(check_shot_size, setup_cut, teardown),
+		cmocka_unit_test_setup_teardown(check_shot_size, setup_break, teardown),
 		cmocka_unit_test(check_error_shot),
 		cmocka_unit_test(check_request_decode),
 		cmocka_unit_test(check_resolve_url),

@@ -13,10 +13,25 @@ if [ -z "${POOL_IN_NETNS:-}" ]; then
 fi
 URL='udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608'
 DATA="$ROOT/tests/lcm/data"
-"$BUILD/tools/pool-shot-server" --lcm-url "$URL" 2>"${TMPDIR:-/tmp}/pool-shot-server-bench.log" &
+LOG="${TMPDIR:-/tmp}/pool-shot-server-bench.$$.log"
+"$BUILD/tools/pool-shot-server" --lcm-url "$URL" 2>"$LOG" &
 SERVER=$!
 trap 'kill $SERVER 2>/dev/null || true' EXIT
-sleep 0.3
+# Wait for the server's ready line (it subscribes before printing it), at most 10 s.
+tries=0
+until grep -q 'pool-shot-server: ready' "$LOG" 2>/dev/null; do
+  if ! kill -0 $SERVER 2>/dev/null; then
+    echo "bench_shot_server.sh: pool-shot-server exited before it was ready:" >&2
+    cat "$LOG" >&2
+    exit 1
+  fi
+  tries=$((tries + 1))
+  if [ $tries -gt 200 ]; then
+    echo "bench_shot_server.sh: pool-shot-server not ready after 10 s" >&2
+    exit 1
+  fi
+  sleep 0.05
+done
 # The labels count the events pool-sim produces for each scenario, so they follow the engine.
 events() { "$BUILD/tools/pool-sim" "$1" --summary 2>&1 >/dev/null | sed -n 's/^pool-sim: \([0-9]*\) events.*/\1/p'; }
 "$BUILD/tools/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/short.json" \
@@ -25,4 +40,6 @@ events() { "$BUILD/tools/pool-sim" "$1" --summary 2>&1 >/dev/null | sed -n 's/^p
   --name "break (16 balls, $(events "$DATA/break.json") events)" "$@"
 kill -TERM $SERVER
 wait $SERVER || true
-tail -1 "${TMPDIR:-/tmp}/pool-shot-server-bench.log"
+trap - EXIT
+tail -1 "$LOG"
+rm -f "$LOG"

@@ -111,33 +111,16 @@ static void pool_lcm_shot_blank(int64_t shot_id, int64_t request_id, int64_t uti
 	out->error = pool_lcm_empty;
 }
 
-int pool_lcm_shot_fill(const pool_sim *sim, int64_t shot_id, int64_t request_id, int64_t utime,
-                       pool_lcm_shot_t *out)
+// Final states of every ball at pool_sim_time, sim_time and stop_reason (events untouched).
+static int pool_lcm_shot_fill_final_part(const pool_sim *sim, pool_lcm_shot_t *out)
 {
-	pool_lcm_shot_blank(shot_id, request_id, utime, out);
-	int count = 0;
-	const pool_event *events = pool_sim_events(sim, &count);
 	int balls = pool_sim_ball_count(sim);
-	if (count > 0) {
-		out->events = calloc((size_t)count, sizeof *out->events);
-		if (out->events == NULL) {
-			return -1;
-		}
-		for (int i = 0; i < count; ++i) {
-			out->num_events = i + 1;
-			if (pool_lcm_event_fill_from(sim, &events[i], i, shot_id, utime, &out->events[i]) != 0) {
-				pool_lcm_shot_release(out);
-				return -1;
-			}
-		}
-	}
 	if (balls > 0) {
 		pool_ball_state *states = calloc((size_t)balls, sizeof *states);
 		out->final_states = calloc((size_t)balls, sizeof *out->final_states);
 		if (states == NULL || out->final_states == NULL ||
 		    pool_sim_state_at(sim, pool_sim_time(sim), states) != POOL_OK) {
 			free(states);
-			pool_lcm_shot_release(out);
 			return -1;
 		}
 		out->num_balls = balls;
@@ -151,18 +134,81 @@ int pool_lcm_shot_fill(const pool_sim *sim, int64_t shot_id, int64_t request_id,
 	return 0;
 }
 
-int pool_lcm_shot_fill_error(int64_t shot_id, int64_t request_id, int64_t utime,
-                             const char *message, pool_lcm_shot_t *out)
+int pool_lcm_shot_fill(const pool_sim *sim, int64_t shot_id, int64_t request_id, int64_t utime,
+                       pool_lcm_shot_t *out)
 {
 	pool_lcm_shot_blank(shot_id, request_id, utime, out);
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	if (count > 0) {
+		out->events = calloc((size_t)count, sizeof *out->events);
+		if (out->events == NULL) {
+			return -1;
+		}
+		for (int i = 0; i < count; ++i) {
+			out->num_events = i + 1;
+			if (pool_lcm_event_fill_from(sim, &events[i], i, shot_id, utime, &out->events[i]) != 0) {
+				pool_lcm_shot_release(out);
+				return -1;
+			}
+		}
+	}
+	if (pool_lcm_shot_fill_final_part(sim, out) != 0) {
+		pool_lcm_shot_release(out);
+		return -1;
+	}
+	return 0;
+}
+
+int pool_lcm_shot_fill_final(const pool_sim *sim, int64_t shot_id, int64_t request_id,
+                             int64_t utime, pool_lcm_shot_t *out)
+{
+	pool_lcm_shot_blank(shot_id, request_id, utime, out);
+	if (pool_lcm_shot_fill_final_part(sim, out) != 0) {
+		pool_lcm_shot_release(out);
+		return -1;
+	}
+	return 0;
+}
+
+int64_t pool_lcm_shot_events_encoded_size(const pool_sim *sim)
+{
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	int64_t total = 0;
+	for (int i = 0; i < count; ++i) {
+		// One event at a time (its strings and ball states), so measuring needs no whole message.
+		pool_lcm_event_t msg;
+		if (pool_lcm_event_fill_from(sim, &events[i], i, 0, 0, &msg) != 0) {
+			pool_lcm_event_release(&msg);
+			return -1;
+		}
+		total += __pool_lcm_event_t_encoded_array_size(&msg, 1);
+		pool_lcm_event_release(&msg);
+	}
+	return total;
+}
+
+int pool_lcm_shot_set_error(pool_lcm_shot_t *msg, const char *message)
+{
 	const char *text = (message != NULL && message[0] != '\0') ? message : "unknown error";
 	char *copy = malloc(strlen(text) + 1);
 	if (copy == NULL) {
 		return -1;
 	}
 	strcpy(copy, text);
-	out->error = copy;
+	if (msg->error != NULL && msg->error != pool_lcm_empty) {
+		free(msg->error);
+	}
+	msg->error = copy;
 	return 0;
+}
+
+int pool_lcm_shot_fill_error(int64_t shot_id, int64_t request_id, int64_t utime,
+                             const char *message, pool_lcm_shot_t *out)
+{
+	pool_lcm_shot_blank(shot_id, request_id, utime, out);
+	return pool_lcm_shot_set_error(out, message);
 }
 
 void pool_lcm_shot_release(pool_lcm_shot_t *msg)

@@ -53,6 +53,21 @@ void pool_lcm_event_release(pool_lcm_event_t *msg);
 int pool_lcm_shot_fill(const pool_sim *sim, int64_t shot_id, int64_t request_id, int64_t utime,
                        pool_lcm_shot_t *out);
 
+/// Fills a shot message with no events: the final states of every ball at pool_sim_time,
+/// sim_time and stop_reason (the answer to a request whose events do not fit in a message).
+/// Returns 0, or -1 when memory runs out or the sim refuses.
+int pool_lcm_shot_fill_final(const pool_sim *sim, int64_t shot_id, int64_t request_id,
+                             int64_t utime, pool_lcm_shot_t *out);
+
+/// Bytes the events of sim add to an encoded shot_t: pool_lcm_shot_t_encoded_size of what
+/// pool_lcm_shot_fill builds equals that of pool_lcm_shot_fill_final plus this. Measured one
+/// event at a time, without building the whole message. -1 when memory runs out.
+int64_t pool_lcm_shot_events_encoded_size(const pool_sim *sim);
+
+/// Replaces the error of a message built here with a copy of message. Returns 0, or -1 (message
+/// unchanged) when memory runs out.
+int pool_lcm_shot_set_error(pool_lcm_shot_t *msg, const char *message);
+
 /// Fills a shot message that carries only an error (no events, no balls); copies message.
 int pool_lcm_shot_fill_error(int64_t shot_id, int64_t request_id, int64_t utime,
                              const char *message, pool_lcm_shot_t *out);

@@ -36,8 +36,9 @@ static void pool_lcm_fail(pool_lcm_sim_publisher *p, const char *what)
 pool_lcm_sim_publisher *pool_lcm_sim_publisher_create(const char *url, double playback_hz,
                                                       char *err, size_t err_size)
 {
-	if (!(playback_hz >= 0.0) || !isfinite(playback_hz)) {
-		snprintf(err, err_size, "--playback: must be a finite rate >= 0 Hz");
+	if (!(playback_hz >= 0.0) || !(playback_hz <= POOL_LCM_PLAYBACK_MAX_HZ)) {
+		snprintf(err, err_size, "--playback: must be a rate from 0 to %g Hz",
+		         POOL_LCM_PLAYBACK_MAX_HZ);
 		return NULL;
 	}
 	pool_lcm_sim_publisher *p = calloc(1, sizeof *p);

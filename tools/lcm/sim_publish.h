@@ -12,12 +12,17 @@
 extern "C" {
 #endif
 
+/// Highest --playback rate in Hz: a frame carries every ball, and faster than a display refreshes
+/// only floods the network (1e9 Hz would publish a frame per simulated nanosecond).
+#define POOL_LCM_PLAYBACK_MAX_HZ 1000.0
+
 /// An open LCM connection plus the shot being published.
 typedef struct pool_lcm_sim_publisher pool_lcm_sim_publisher;
 
 /// Opens LCM on url (NULL or empty: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0).
 /// playback_hz > 0 paces the shot in real time and publishes every ball on POOL_STATE that many
-/// times per simulated second. Returns NULL with a message in err when LCM cannot be opened.
+/// times per simulated second (at most POOL_LCM_PLAYBACK_MAX_HZ). Returns NULL with a message in
+/// err when the rate is out of range or LCM cannot be opened.
 pool_lcm_sim_publisher *pool_lcm_sim_publisher_create(const char *url, double playback_hz,
                                                       char *err, size_t err_size);
 
