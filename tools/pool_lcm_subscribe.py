@@ -22,7 +22,7 @@ STATE_NAMES = ["stationary", "spinning", "sliding", "rolling", "airborne", "link
                "pocketed", "off_table"]
 EVENT_TYPES = ["strike", "slide_roll", "roll_stop", "spin_stop", "ball_ball", "ball_cushion",
                "ball_table", "pocket", "off_table", "link_begin", "link_step", "link_end"]
-DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
+DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
 
 
 def find_types_dir(explicit):

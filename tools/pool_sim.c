@@ -24,7 +24,7 @@ typedef struct sim_options {
 	bool summary;              ///< human-readable summary on standard error
 	bool help;                 ///< print usage and exit 0
 	bool lcm;                  ///< publish the shot on LCM (--lcm-url or --playback given)
-	const char *lcm_url;       ///< NULL = $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0
+	const char *lcm_url;       ///< NULL = $LCM_DEFAULT_URL, else POOL_LCM_DEFAULT_URL
 	double playback_hz;        ///< > 0: real-time frames on POOL_STATE at this rate
 } sim_options;
 
@@ -45,7 +45,7 @@ static const char usage_text[] =
 	"  --summary          print events by type, pocketed balls and times on standard error\n"
 	"  --lcm-url URL      publish each event on POOL_EVENT as it is produced and the shot on\n"
 	"                     POOL_SHOT (default URL $LCM_DEFAULT_URL, else\n"
-	"                     udpm://239.255.76.67:7667?ttl=0)\n"
+	"                     udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608)\n"
 	"  --playback HZ      with LCM, run in real time and publish every ball on POOL_STATE HZ\n"
 	"                     times per simulated second (HZ at most 1000)\n"
 	"  -h, --help         show this help\n"

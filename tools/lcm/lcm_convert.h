@@ -28,8 +28,9 @@ extern "C" {
 #define POOL_LCM_CHANNEL_STATE "POOL_STATE"
 /// Channel of engine comparison results (bench_result_t).
 #define POOL_LCM_CHANNEL_BENCH "POOL_BENCH"
-/// URL used when neither --lcm-url nor LCM_DEFAULT_URL is given (INTERFACES.md).
-#define POOL_LCM_DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0"
+/// URL used when neither --lcm-url nor LCM_DEFAULT_URL is given: INTERFACES.md's group, port and
+/// ttl, plus a receive buffer large enough for multi-megabyte shots (README, "Message size").
+#define POOL_LCM_DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
 
 /// Microseconds since the Unix epoch (wall clock), the utime of every message.
 int64_t pool_lcm_utime_now(void);

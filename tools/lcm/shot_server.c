@@ -52,7 +52,7 @@ static const char usage_text[] =
 	"SIGINT or SIGTERM (abandoning a shot in progress) and reports how many requests it answered.\n"
 	"\n"
 	"  --lcm-url URL           LCM provider (default $LCM_DEFAULT_URL, else\n"
-	"                          udpm://239.255.76.67:7667?ttl=0)\n"
+	"                          udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608)\n"
 	"  --max-requests N        exit after answering N requests (0 = serve until a signal)\n"
 	"  --max-shot-seconds S    wall time one request may take, parsing included (default 10)\n"
 	"  --max-events N          events one shot may take; caps the scenario's options.max_events\n"

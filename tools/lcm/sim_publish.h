@@ -19,7 +19,7 @@ extern "C" {
 /// An open LCM connection plus the shot being published.
 typedef struct pool_lcm_sim_publisher pool_lcm_sim_publisher;
 
-/// Opens LCM on url (NULL or empty: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0).
+/// Opens LCM on url (NULL or empty: $LCM_DEFAULT_URL, else POOL_LCM_DEFAULT_URL).
 /// playback_hz > 0 paces the shot in real time and publishes every ball on POOL_STATE that many
 /// times per simulated second (at most POOL_LCM_PLAYBACK_MAX_HZ). Returns NULL with a message in
 /// err when the rate is out of range or LCM cannot be opened.
