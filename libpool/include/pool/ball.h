@@ -23,10 +23,10 @@ typedef enum pool_motion {
 } pool_motion;
 
 /// Lower-case name as in INTERFACES.md ("stationary", "sliding", ...).
-const char *pool_motion_name(pool_motion motion);
+POOL_API const char *pool_motion_name(pool_motion motion);
 
 /// Parses a name from pool_motion_name; returns -1 when unknown.
-int pool_motion_from_name(const char *name);
+POOL_API int pool_motion_from_name(const char *name);
 
 /// One ball: identity, motion state and kinematics (world frame).
 typedef struct pool_ball_state {

@@ -8,6 +8,14 @@
 extern "C" {
 #endif
 
+/// Marks the public functions: the library is built with hidden visibility, so only these are
+/// exported from libpool.so and the internals stay free to change.
+#if defined(__GNUC__) || defined(__clang__)
+#define POOL_API __attribute__((visibility("default")))
+#else
+#define POOL_API
+#endif
+
 /// Library version, major * 10000 + minor * 100 + patch.
 #define POOL_VERSION 100
 
@@ -35,7 +43,7 @@ typedef enum pool_result {
 } pool_result;
 
 /// Static English description of a result code.
-const char *pool_result_str(pool_result result);
+POOL_API const char *pool_result_str(pool_result result);
 
 /// Detailed message of a failed call, field path first, e.g.
 /// "balls[2].pos: overlaps ball 1 by 0.003 m". Optional out-parameter of validating calls.

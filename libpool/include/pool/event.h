@@ -25,7 +25,7 @@ typedef enum pool_event_type {
 } pool_event_type;
 
 /// Name as in INTERFACES.md ("ball_ball", ...).
-const char *pool_event_type_name(pool_event_type type);
+POOL_API const char *pool_event_type_name(pool_event_type type);
 
 /// Rails (cushion noses). South is y = 0, north y = W, west x = 0, east x = L.
 typedef enum pool_rail {
@@ -37,7 +37,7 @@ typedef enum pool_rail {
 } pool_rail;
 
 /// "south", "north", "west", "east" (NULL for POOL_RAIL_NONE).
-const char *pool_rail_name(pool_rail rail);
+POOL_API const char *pool_rail_name(pool_rail rail);
 
 /// Pockets: four corners and the two side pockets at x = L/2.
 typedef enum pool_pocket {
@@ -51,7 +51,7 @@ typedef enum pool_pocket {
 } pool_pocket;
 
 /// "sw", "se", "nw", "ne", "s", "n" (NULL for POOL_POCKET_NONE).
-const char *pool_pocket_name(pool_pocket pocket);
+POOL_API const char *pool_pocket_name(pool_pocket pocket);
 
 /// One processed event. The states of the balls it involved, just after it, are
 /// pool_sim_event_states(sim, event)[0 .. ball_count-1] (they carry the ball ids).

@@ -19,11 +19,11 @@ typedef enum pool_rack_kind {
 /// Writes the cue ball (id 0, on the head spot x = L/4, y = W/2) and the object balls, apex on
 /// the foot spot (x = 3L/4, y = W/2), neighbours `gap` m apart (0 = frozen), all at rest on the
 /// cloth. Returns the number of balls written, or a negative pool_result if capacity is too small.
-int pool_rack(pool_rack_kind kind, const pool_table_def *table, const pool_params *params,
-              double gap, pool_ball_state *balls, int capacity);
+POOL_API int pool_rack(pool_rack_kind kind, const pool_table_def *table, const pool_params *params,
+                       double gap, pool_ball_state *balls, int capacity);
 
 /// A centre-ball break straight at the apex, level cue, at `speed` m/s.
-pool_strike pool_break_strike(double speed);
+POOL_API pool_strike pool_break_strike(double speed);
 
 #ifdef __cplusplus
 }

@@ -31,7 +31,7 @@ typedef struct pool_sim_def {
 } pool_sim_def;
 
 /// WPA 9 ft table, PHYSICS.md parameters, planar, max_time 120 s, max_events 100000.
-pool_sim_def pool_default_sim_def(void);
+POOL_API pool_sim_def pool_default_sim_def(void);
 
 /// Why the shot ended (or POOL_STOP_NONE while it runs).
 typedef enum pool_stop_reason {
@@ -42,59 +42,59 @@ typedef enum pool_stop_reason {
 } pool_stop_reason;
 
 /// Creates an empty simulation; validates the def (message names the field).
-pool_result pool_sim_create(const pool_sim_def *def, pool_sim **sim, pool_error *error);
+POOL_API pool_result pool_sim_create(const pool_sim_def *def, pool_sim **sim, pool_error *error);
 
 /// Frees everything the simulation owns. NULL is a no-op.
-void pool_sim_destroy(pool_sim *sim);
+POOL_API void pool_sim_destroy(pool_sim *sim);
 
 /// Removes every ball and event to start a new shot, keeping allocated memory (so thousands of
 /// candidate shots do not allocate). def may be NULL to keep the current one.
-pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *error);
+POOL_API pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *error);
 
 /// Adds a ball before the shot starts. Its motion state is derived from its velocities (the
 /// given one is ignored); z defaults to nothing: pass pos.z = R for a ball on the cloth.
 /// Rejects duplicate ids, non-finite numbers, balls off the table and overlaps beyond
 /// POOL_TOUCH_TOLERANCE; the message calls the ball "balls[i]" with i its insertion index.
-pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_error *error);
+POOL_API pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_error *error);
 
 /// Strikes a ball with the cue at the current time (t = 0 before the first step); records a
 /// POOL_EVENT_STRIKE. The ball must be at rest on the cloth.
-pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *strike,
-                            pool_error *error);
+POOL_API pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *strike,
+                                     pool_error *error);
 
 /// Processes the next event. Returns 1 when one was processed, 0 when the shot is over (see
 /// pool_sim_stop_reason), or a negative pool_result.
-int pool_sim_step(pool_sim *sim);
+POOL_API int pool_sim_step(pool_sim *sim);
 
 /// Steps until the shot is over.
-pool_result pool_sim_run(pool_sim *sim);
+POOL_API pool_result pool_sim_run(pool_sim *sim);
 
 /// Processes every event at or before time t (s), so pool_sim_state_at(sim, t, ...) is final.
-pool_result pool_sim_run_until(pool_sim *sim, double t);
+POOL_API pool_result pool_sim_run_until(pool_sim *sim, double t);
 
 /// Why the shot ended so far.
-pool_stop_reason pool_sim_stop_reason(const pool_sim *sim);
+POOL_API pool_stop_reason pool_sim_stop_reason(const pool_sim *sim);
 
 /// s, time of the last processed event (0 before any).
-double pool_sim_time(const pool_sim *sim);
+POOL_API double pool_sim_time(const pool_sim *sim);
 
 /// Number of balls added.
-int pool_sim_ball_count(const pool_sim *sim);
+POOL_API int pool_sim_ball_count(const pool_sim *sim);
 
 /// Current states, by insertion index, each as of the last event that involved the ball
 /// (use pool_sim_state_at for a common instant). Valid until the next call that changes the sim.
-const pool_ball_state *pool_sim_balls(const pool_sim *sim);
+POOL_API const pool_ball_state *pool_sim_balls(const pool_sim *sim);
 
 /// Exact state of every ball at time t (s), closed-form between events, by insertion index;
 /// out must hold pool_sim_ball_count() states. t must not exceed the time up to which events
 /// have been processed (any t once the shot is at rest); otherwise POOL_ERR_STATE.
-pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out);
+POOL_API pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out);
 
 /// Processed events in time order; *count receives their number. Valid until the sim changes.
-const pool_event *pool_sim_events(const pool_sim *sim, int *count);
+POOL_API const pool_event *pool_sim_events(const pool_sim *sim, int *count);
 
 /// The after-states of an event's balls (event->ball_count of them).
-const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_event *event);
+POOL_API const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_event *event);
 
 #ifdef __cplusplus
 }

@@ -20,8 +20,8 @@ typedef struct pool_strike {
 
 /// Velocity and spin the strike gives a ball at rest (Leckie & Greenspan impulse),
 /// including the vertical component (dropped later in planar mode).
-pool_result pool_strike_velocities(const pool_params *params, const pool_strike *strike,
-                                   pool_vec3 *vel, pool_vec3 *omega, pool_error *error);
+POOL_API pool_result pool_strike_velocities(const pool_params *params, const pool_strike *strike,
+                                            pool_vec3 *vel, pool_vec3 *omega, pool_error *error);
 
 #ifdef __cplusplus
 }

@@ -19,10 +19,10 @@ typedef struct pool_table_def {
 } pool_table_def;
 
 /// WPA 9 ft table (2.54 x 1.27 m, nose 0.03629 m, mouths 0.1143 / 0.127 m).
-pool_table_def pool_default_table_def(void);
+POOL_API pool_table_def pool_default_table_def(void);
 
 /// Table preset by name: "wpa-9ft", "wpa-8ft", "wpa-7ft".
-pool_result pool_table_preset(const char *name, pool_table_def *table);
+POOL_API pool_result pool_table_preset(const char *name, pool_table_def *table);
 
 /// Physical parameters, names and defaults as in PHYSICS.md.
 typedef struct pool_params {
@@ -42,14 +42,14 @@ typedef struct pool_params {
 } pool_params;
 
 /// PHYSICS.md defaults.
-pool_params pool_default_params(void);
+POOL_API pool_params pool_default_params(void);
 
 /// Checks ranges (positive sizes, non-negative friction, restitution in [0, 1], finite);
 /// the message names the field, e.g. "params.mu_slide: must be >= 0".
-pool_result pool_table_def_validate(const pool_table_def *table, pool_error *error);
+POOL_API pool_result pool_table_def_validate(const pool_table_def *table, pool_error *error);
 
 /// Checks ranges of every parameter; the message names the field.
-pool_result pool_params_validate(const pool_params *params, pool_error *error);
+POOL_API pool_result pool_params_validate(const pool_params *params, pool_error *error);
 
 #ifdef __cplusplus
 }

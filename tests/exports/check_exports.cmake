@@ -1,0 +1,45 @@
+# libpool.so must export exactly the functions its public headers declare with POOL_API: no
+# internal symbol leaks (users could come to depend on it), no public one is missing.
+# Run as: cmake -DNM=nm -DLIBRARY=libpool.so -DHEADERS=dir -P check_exports.cmake
+execute_process(COMMAND ${NM} -D --defined-only ${LIBRARY}
+  OUTPUT_VARIABLE nm_out RESULT_VARIABLE nm_status)
+if(NOT nm_status EQUAL 0)
+  message(FATAL_ERROR "${NM} failed on ${LIBRARY}")
+endif()
+set(exported "")
+string(REPLACE "\n" ";" nm_lines "${nm_out}")
+foreach(line IN LISTS nm_lines)
+  # "ADDRESS TYPE NAME": code symbols (T) not reserved to the toolchain (a leading underscore).
+  if(line MATCHES "^[0-9a-fA-F]+ [TtWi] ([A-Za-z][A-Za-z0-9_]*)$")
+    list(APPEND exported ${CMAKE_MATCH_1})
+  endif()
+endforeach()
+
+set(declared "")
+file(GLOB headers ${HEADERS}/*.h)
+foreach(header IN LISTS headers)
+  file(READ ${header} text)
+  string(REGEX MATCHALL "POOL_API[^;{]*[ *](pool_[a-z0-9_]+)\\(" decls "${text}")
+  foreach(decl IN LISTS decls)
+    string(REGEX MATCH "(pool_[a-z0-9_]+)\\($" name "${decl}")
+    list(APPEND declared ${CMAKE_MATCH_1})
+  endforeach()
+endforeach()
+
+list(SORT exported)
+list(SORT declared)
+list(LENGTH declared count)
+if(count LESS 20)
+  message(FATAL_ERROR "found only ${count} POOL_API declarations in ${HEADERS}")
+endif()
+set(leaked ${exported})
+list(REMOVE_ITEM leaked ${declared})
+set(missing ${declared})
+if(exported)
+  list(REMOVE_ITEM missing ${exported})
+endif()
+if(leaked OR missing)
+  message(FATAL_ERROR "libpool.so exports internal symbols: [${leaked}]; "
+                      "public functions not exported: [${missing}]")
+endif()
+message(STATUS "libpool.so exports exactly the ${count} POOL_API functions")
