@@ -79,10 +79,10 @@ def start(*options):
     return server
 
 
-def stop(server, label):
-    """SIGTERM; returns the report line (checks exit 0 within 2 s)."""
+def stop(server, label, sig=signal.SIGTERM):
+    """Sends sig (SIGTERM by default); returns the report line (checks exit 0 within 2 s)."""
     t0 = time.monotonic()
-    server.send_signal(signal.SIGTERM)
+    server.send_signal(sig)
     try:
         _, err = server.communicate(timeout=2)
     except subprocess.TimeoutExpired:
@@ -167,7 +167,7 @@ if u.check(s is not None, "small answer under --max-answer-bytes 1000: no answer
 report, _ = stop(server, "answer size 1000")
 u.check("1 answers over --max-answer-bytes" in report, "answer size 1000: report %r" % report)
 
-# 3. SIGTERM while an endless shot runs (default budget 10 s): exit 0 within 2 s, the abandoned
+# 3. SIGTERM (then SIGINT) while an endless shot runs (default budget 10 s): exit 0 within 2 s, the abandoned
 # request answered with an error, the report printed.
 server = start()
 request(20, endless)
@@ -180,6 +180,16 @@ s = wait_answer(20, 2)
 if u.check(s is not None, "abandoned shot: no answer"):
     u.check("abandoned" in s.error, "abandoned shot: error %r" % s.error)
 print("SIGTERM during a shot: exit 0 after %.2f s; %s" % (took, report), flush=True)
+
+# The same with SIGINT (Ctrl-C in a terminal).
+server = start()
+request(21, endless)
+time.sleep(0.7)
+report, took = stop(server, "SIGINT during a shot", signal.SIGINT)
+u.check(took < 2 and "1 shots abandoned on stop" in report,
+        "SIGINT during a shot: exit after %.2f s, report %r" % (took, report))
+s = wait_answer(21, 2)
+u.check(s is not None and "abandoned" in s.error, "SIGINT: abandoned shot not answered with an error")
 
 # 4. Bad option values are refused with exit 2, naming the option.
 for opt, value in (("--max-shot-seconds", "0"), ("--max-events", "0"), ("--max-balls", "-1"),
