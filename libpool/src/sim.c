@@ -616,13 +616,15 @@ int pool_sim_step(pool_sim *sim) {
 		sim->processed = INFINITY;
 		return 0;
 	}
-	if (sim->n_events >= sim->def.max_events) {
-		sim->stop = POOL_STOP_MAX_EVENTS;
-		return 0;
-	}
+	// The time limit first: when the next event lies beyond max_time the event limit cut nothing,
+	// and the shot is the one cut at max_time (its states known up to max_time).
 	if (top->time > sim->def.max_time) {
 		sim->stop = POOL_STOP_MAX_TIME;
 		sim->processed = fmax(sim->processed, sim->def.max_time);
+		return 0;
+	}
+	if (sim->n_events >= sim->def.max_events) {
+		sim->stop = POOL_STOP_MAX_EVENTS;
 		return 0;
 	}
 	if (reserve_history(sim, 1, 2))
@@ -665,6 +667,12 @@ pool_result pool_sim_run_until(pool_sim *sim, double t) {
 pool_stop_reason pool_sim_stop_reason(const pool_sim *sim) { return sim ? sim->stop : POOL_STOP_NONE; }
 
 double pool_sim_time(const pool_sim *sim) { return sim ? sim->time : 0.0; }
+
+double pool_sim_end_time(const pool_sim *sim) {
+	if (!sim)
+		return 0.0;
+	return sim->stop == POOL_STOP_MAX_TIME ? fmax(sim->time, sim->def.max_time) : sim->time;
+}
 
 int pool_sim_ball_count(const pool_sim *sim) { return sim ? sim->n : 0; }
 

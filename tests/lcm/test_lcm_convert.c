@@ -20,13 +20,16 @@ typedef struct fixture {
 	pool_sim *sim;
 } fixture;
 
-static int setup_shot(void **state, const char *name)
+static int setup_shot_until(void **state, const char *name, double max_time)
 {
 	fixture *f = calloc(1, sizeof *f);
 	char path[1024], err[512];
 	snprintf(path, sizeof path, "%s/%s.json", POOL_LCM_TEST_DATA_DIR, name);
 	if (pool_scenario_load_file(path, &f->scenario, err, sizeof err) != 0) {
 		fail_msg("%s: %s", path, err);
+	}
+	if (max_time > 0.0) {
+		f->scenario.def.max_time = max_time;
 	}
 	pool_error perr = {{0}};
 	assert_int_equal(pool_scenario_setup(&f->scenario, &f->sim, &perr), POOL_OK);
@@ -35,8 +38,11 @@ static int setup_shot(void **state, const char *name)
 	return 0;
 }
 
+static int setup_shot(void **state, const char *name) { return setup_shot_until(state, name, 0.0); }
 static int setup_cut(void **state) { return setup_shot(state, "cut"); }
 static int setup_break(void **state) { return setup_shot(state, "break"); }
+// A break cut at 0.5 s, balls still moving: its final states belong to max_time, as pool-sim's.
+static int setup_break_cut(void **state) { return setup_shot_until(state, "break", 0.5); }
 
 static int teardown(void **state)
 {
@@ -125,15 +131,27 @@ static void check_shot_round_trip(void **state)
 	int balls = pool_sim_ball_count(f->sim);
 	assert_int_equal(got->num_balls, balls);
 	pool_ball_state *final_states = calloc((size_t)balls, sizeof *final_states);
-	assert_int_equal(pool_sim_state_at(f->sim, pool_sim_time(f->sim), final_states), POOL_OK);
+	double end = pool_sim_time(f->sim);
+	int moving = 0;
+	if (pool_sim_stop_reason(f->sim) == POOL_STOP_MAX_TIME) {
+		end = f->scenario.def.max_time;
+		assert_true(pool_sim_end_time(f->sim) == end);
+		assert_true(pool_sim_time(f->sim) < end);
+	}
+	assert_int_equal(pool_sim_state_at(f->sim, end, final_states), POOL_OK);
 	for (int i = 0; i < balls; ++i) {
 		assert_ball_equal(&got->final_states[i], &final_states[i]);
+		moving += got->final_states[i].state == POOL_MOTION_SLIDING ||
+		          got->final_states[i].state == POOL_MOTION_ROLLING;
 		// At rest (or stopped): nothing still slides or rolls.
 		if (pool_sim_stop_reason(f->sim) == POOL_STOP_REST) {
 			assert_true(got->final_states[i].state == POOL_MOTION_STATIONARY ||
 			            got->final_states[i].state == POOL_MOTION_POCKETED ||
 			            got->final_states[i].state == POOL_MOTION_OFF_TABLE);
 		}
+	}
+	if (pool_sim_stop_reason(f->sim) == POOL_STOP_MAX_TIME) {
+		assert_true(moving > 0);
 	}
 	free(final_states);
 	pool_lcm_shot_t_destroy(r.shot);
@@ -290,6 +308,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup_teardown(check_shot_round_trip, setup_cut, teardown),
 		cmocka_unit_test_setup_teardown(check_shot_round_trip, setup_break, teardown),
+		cmocka_unit_test_setup_teardown(check_shot_round_trip, setup_break_cut, teardown),
 		cmocka_unit_test_setup_teardown(check_event_fill, setup_break, teardown),
 		cmocka_unit_test_setup_teardown(check_table_state, setup_cut, teardown),
 		cmocka_unit_test_setup_teardown(check_shot_size, setup_cut, teardown),

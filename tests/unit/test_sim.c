@@ -356,6 +356,30 @@ static void test_limits(void **state) {
 	assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_MAX_TIME);
 	assert_int_equal(pool_sim_state_at(sim, 0.5, out), POOL_OK);
 	assert_int_equal(pool_sim_state_at(sim, 0.6, out), POOL_ERR_STATE);
+	int within;
+	pool_sim_events(sim, &within);
+	pool_sim_destroy(sim);
+
+	// Both limits, the event limit reached exactly by the events before max_time: nothing was cut
+	// by the event limit, so the shot is the one cut at max_time.
+	def.max_events = within;
+	sim = make_sim(&def);
+	for (int i = 0; i < nb; ++i)
+		pool_sim_add_ball(sim, &balls[i], NULL);
+	pool_sim_strike(sim, 0, &s, NULL);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_MAX_TIME);
+	pool_sim_events(sim, &n);
+	assert_int_equal(n, within);
+	assert_int_equal(pool_sim_state_at(sim, 0.5, out), POOL_OK);
+	pool_sim_destroy(sim);
+	def.max_events = within - 1; // now the event limit does cut the shot
+	sim = make_sim(&def);
+	for (int i = 0; i < nb; ++i)
+		pool_sim_add_ball(sim, &balls[i], NULL);
+	pool_sim_strike(sim, 0, &s, NULL);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_MAX_EVENTS);
 	pool_sim_destroy(sim);
 
 	def.max_time = 120.0;

@@ -223,12 +223,8 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	int count = 0;
 	const pool_event *events = pool_sim_events(sim, &count);
 	int balls = pool_sim_ball_count(sim);
-	// "final" is every ball at rest, or at max_time when the shot was cut there (INTERFACES.md);
-	// the library has processed everything up to max_time in that case.
-	double end = pool_sim_time(sim);
-	if (pool_sim_stop_reason(sim) == POOL_STOP_MAX_TIME && options->def &&
-	    options->def->max_time > end)
-		end = options->def->max_time;
+	// "final" is every ball at rest, or at max_time when the shot was cut there (INTERFACES.md).
+	double end = pool_sim_end_time(sim);
 	pool_ball_state *final_states = calloc(balls > 0 ? (size_t)balls : 1, sizeof *final_states);
 	if (!final_states)
 		return NULL;

@@ -111,7 +111,8 @@ static void pool_lcm_shot_blank(int64_t shot_id, int64_t request_id, int64_t uti
 	out->error = pool_lcm_empty;
 }
 
-// Final states of every ball at pool_sim_time, sim_time and stop_reason (events untouched).
+// Final states of every ball at pool_sim_end_time (max_time for a shot cut there, as pool-sim's
+// "final"), sim_time and stop_reason (events untouched).
 static int pool_lcm_shot_fill_final_part(const pool_sim *sim, pool_lcm_shot_t *out)
 {
 	int balls = pool_sim_ball_count(sim);
@@ -119,7 +120,7 @@ static int pool_lcm_shot_fill_final_part(const pool_sim *sim, pool_lcm_shot_t *o
 		pool_ball_state *states = calloc((size_t)balls, sizeof *states);
 		out->final_states = calloc((size_t)balls, sizeof *out->final_states);
 		if (states == NULL || out->final_states == NULL ||
-		    pool_sim_state_at(sim, pool_sim_time(sim), states) != POOL_OK) {
+		    pool_sim_state_at(sim, pool_sim_end_time(sim), states) != POOL_OK) {
 			free(states);
 			return -1;
 		}

@@ -78,6 +78,10 @@ POOL_API pool_stop_reason pool_sim_stop_reason(const pool_sim *sim);
 /// s, time of the last processed event (0 before any).
 POOL_API double pool_sim_time(const pool_sim *sim);
 
+/// s, the instant the shot's final states belong to: max_time for a shot cut there (its balls
+/// may still move; pool_sim_state_at is valid up to it), else pool_sim_time().
+POOL_API double pool_sim_end_time(const pool_sim *sim);
+
 /// Number of balls added.
 POOL_API int pool_sim_ball_count(const pool_sim *sim);
 
