@@ -77,8 +77,10 @@ std::vector<TimeWindow> collision_windows(const std::vector<Event> &reference, c
 		const CollisionKey k = key_of(r, rails);
 		double lo = r.t, hi = r.t;
 		const Event *match = nullptr;
+		// A counterpart further away than kMaxCollisionLag is another collision (the engine
+		// missed this one): skipping everything in between would hide where outcomes diverge.
 		for (const Event &e : engine)
-			if (is_collision(e.type) && key_of(e, rails) == k &&
+			if (is_collision(e.type) && key_of(e, rails) == k && std::fabs(e.t - r.t) <= kMaxCollisionLag &&
 			    (!match || std::fabs(e.t - r.t) < std::fabs(match->t - r.t)))
 				match = &e;
 		if (match) {

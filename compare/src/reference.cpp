@@ -2,6 +2,7 @@
 #include "reference.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pool_compare {
 
@@ -22,8 +23,14 @@ public:
 	~LibpoolReference() override { pool_sim_destroy(sim_); }
 
 	bool run(const Scenario &scenario, std::string *error) {
+		// A time-stepped engine stops at a step boundary, up to one step past a shot's max_time,
+		// and its state there is compared with the reference at that same instant: so the
+		// reference runs kBeyondMaxTime longer, and only its events up to max_time count.
+		const double max_time = scenario.parsed.def.max_time;
+		pool_scenario extended = scenario.parsed; // shallow: setup only reads the balls
+		extended.def.max_time = max_time + kBeyondMaxTime;
 		pool_error e = {{0}};
-		pool_result r = pool_scenario_setup(&scenario.parsed, &sim_, &e);
+		pool_result r = pool_scenario_setup(&extended, &sim_, &e);
 		if (r == POOL_OK)
 			r = pool_sim_run(sim_);
 		if (r != POOL_OK) {
@@ -32,11 +39,12 @@ public:
 			return false;
 		}
 		const pool_stop_reason why = pool_sim_stop_reason(sim_);
-		at_rest = why == POOL_STOP_REST;
-		end_time = why == POOL_STOP_MAX_TIME ? scenario.parsed.def.max_time : pool_sim_time(sim_);
+		at_rest = why == POOL_STOP_REST && pool_sim_time(sim_) <= max_time;
+		end_time = at_rest ? pool_sim_time(sim_) : max_time;
+		known_until_ = why == POOL_STOP_REST ? HUGE_VAL : pool_sim_end_time(sim_);
 		int count = 0;
 		const pool_event *list = pool_sim_events(sim_, &count);
-		for (int i = 0; i < count; ++i) {
+		for (int i = 0; i < count && list[i].time <= max_time; ++i) {
 			const int type = abi_event_type(list[i].type);
 			if (type < 0)
 				continue;
@@ -60,7 +68,7 @@ public:
 		const int n = pool_sim_ball_count(sim_);
 		std::vector<pool_ball_state> states(static_cast<size_t>(n));
 		std::vector<BallSample> out;
-		if (pool_sim_state_at(sim_, std::min(std::max(t, 0.0), end_time), states.data()) != POOL_OK)
+		if (pool_sim_state_at(sim_, std::min(std::max(t, 0.0), known_until_), states.data()) != POOL_OK)
 			return out;
 		for (const pool_ball_state &s : states)
 			out.push_back(to_sample(s));
@@ -68,7 +76,9 @@ public:
 	}
 
 private:
+	static constexpr double kBeyondMaxTime = 1.0; ///< s, far more than any engine's step
 	pool_sim *sim_ = nullptr;
+	double known_until_ = 0.0; ///< s, states are exact up to here (infinite once at rest)
 };
 
 } // namespace

@@ -37,7 +37,8 @@ public:
 	virtual ~Reference() = default;
 	/// "closed-form" or "libpool" (the "reference" field of results).
 	virtual std::string kind() const = 0;
-	/// Every ball's state at time t (0 <= t <= end_time), in the scenario's ball order.
+	/// Every ball's state at time t >= 0, in the scenario's ball order: exact up to end_time and
+	/// at least one second past it (where a time-stepped engine may stop, a step past max_time).
 	virtual std::vector<BallSample> state_at(double t) const = 0;
 
 	std::vector<Event> events; ///< the ABI-visible events, in time order

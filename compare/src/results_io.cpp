@@ -374,7 +374,7 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 	       "timed runs); `spread rms` is the RMS change of the final positions when the lead ball starts 1 um "
 	       "elsewhere (predictability). `dir err` is the largest angle between engine and reference velocities "
 	       "(balls faster than 5 cm/s) at sample instants where both have had the same collisions: instants "
-	       "between a collision in one and its counterpart in the other, or within max(3 dt, 1 ms) of any "
+	       "between a collision in one and its counterpart in the other (at most 0.5 s apart), or within max(3 dt, 1 ms) of any "
 	       "collision, are left out, so it measures how a ball leaves a collision, not when (that is `event t "
 	       "err`). `missed` / `phantom` count ball pairs and (ball, cushion) contacts of the reference the "
 	       "engine lacks / has in excess" << (cushions_named(records) ? ", cushions told apart by rail" : "")

@@ -180,15 +180,16 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 			if (t > 0.0 && !run.advance(t, &rec.error))
 				return rec;
 			const double reached = t > 0.0 ? engine_time(run.stats(), t) : 0.0;
-			samples.push_back({reached, run.balls(), ref.state_at(std::min(reached, ref.end_time))});
+			samples.push_back({reached, run.balls(), ref.state_at(reached)});
 		}
 		if (!run.finish(ref, max_time, &rec.error))
 			return rec;
 		final_balls = run.balls();
 		const pool_engine_stats stats = run.stats();
-		// A shot cut at max_time: the reference where the engine stopped (within a step of it).
-		// A shot run to rest: both at rest, whenever each got there.
-		const double t_end = ref.at_rest ? ref.end_time : std::min(engine_time(stats, ref.end_time), ref.end_time);
+		// A shot cut at max_time: the reference where the engine stopped (within a step past
+		// it; the reference knows its states beyond max_time). A shot run to rest: both at rest,
+		// whenever each got there.
+		const double t_end = ref.at_rest ? ref.end_time : engine_time(stats, ref.end_time);
 		const std::vector<BallSample> ref_final = ref.state_at(t_end);
 		samples.push_back({ref.at_rest ? std::max(ref.end_time, engine_time(stats, ref.end_time)) : t_end,
 		                   final_balls, ref_final});

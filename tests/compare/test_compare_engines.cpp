@@ -230,9 +230,56 @@ void events_keyed_by_rail() {
 	                      1e-3);
 	CHECK(!w.empty() && w[0].from <= 1.0 - 3e-3 && w[0].to >= 1.05 + 3e-3, "window %.4g..%.4g",
 	      w.empty() ? 0.0 : w[0].from, w.empty() ? 0.0 : w[0].to);
+	// An engine that misses the hit and meets the same rail 2 s later: that is another collision,
+	// and the instants in between (where the outcomes differ) stay measured.
+	const std::vector<TimeWindow> late =
+	    collision_windows(ref.events, {{3.0, POOL_ENGINE_EVENT_BALL_CUSHION, 0, POOL_ENGINE_CUSHION(POOL_RAIL_NORTH)}},
+	                      1e-3);
+	bool covers_gap = false;
+	for (const TimeWindow &x : late)
+		covers_gap = covers_gap || (x.from < 2.0 && x.to > 2.0);
+	CHECK(!covers_gap, "a collision 2 s after the reference's was taken for the same one");
 }
 
 } // namespace
+
+// A shot cut at max_time (the break, 4 s): the reference's events end there, but its states
+// stay exact a little past it, where a time-stepped engine stops (a step after max_time), and
+// match an independent libpool run carried on to rest.
+void libpool_reference_beyond_max_time() {
+	auto s = load("break");
+	if (!s)
+		return;
+	std::string error;
+	auto ref = make_libpool_reference(*s, &error);
+	CHECK(ref != nullptr, "break reference: %s", error.c_str());
+	if (!ref)
+		return;
+	const double T = s->parsed.def.max_time;
+	CHECK(!ref->at_rest && ref->end_time == T, "break reference: end %g, at rest %d", ref->end_time, ref->at_rest);
+	for (const Event &e : ref->events)
+		CHECK(e.t <= T, "reference event at %g s, after max_time %g s", e.t, T);
+	pool_scenario longer = s->parsed;
+	longer.def.max_time = 1e3;
+	pool_sim *sim = nullptr;
+	pool_error perr = {{0}};
+	CHECK(pool_scenario_setup(&longer, &sim, &perr) == POOL_OK && pool_sim_run(sim) == POOL_OK, "break rerun: %s",
+	      perr.message);
+	std::vector<pool_ball_state> truth(static_cast<size_t>(pool_sim_ball_count(sim)));
+	const double t = T + 0.007; // dt = 1e-2 may stop here
+	CHECK(pool_sim_state_at(sim, t, truth.data()) == POOL_OK, "break rerun: no state at %g s", t);
+	const std::vector<BallSample> at_t = ref->state_at(t), at_T = ref->state_at(T);
+	CHECK(at_t.size() == truth.size(), "reference has %zu balls", at_t.size());
+	bool moved = false;
+	for (size_t i = 0; i < at_t.size() && i < truth.size(); ++i) {
+		const Eigen::Vector3d p(truth[i].pos.x, truth[i].pos.y, truth[i].pos.z);
+		CHECK((at_t[i].pos - p).norm() < 1e-12, "ball %d at %g s: reference off by %g m", at_t[i].id, t,
+		      (at_t[i].pos - p).norm());
+		moved = moved || (at_t[i].pos - at_T[i].pos).norm() > 1e-6;
+	}
+	CHECK(moved, "no ball moves after max_time: the check proves nothing");
+	pool_sim_destroy(sim);
+}
 
 int main(int argc, char **argv) {
 	if (argc < 3) {
@@ -244,6 +291,7 @@ int main(int argc, char **argv) {
 	closed_form_matches_validation_2();
 	strike_matches_libpool();
 	events_keyed_by_rail();
+	libpool_reference_beyond_max_time();
 	for (int i = 3; i < argc; ++i) {
 		Plugin plugin;
 		std::string error;
