@@ -107,6 +107,51 @@ def compare_result(got, want, label):
     return not failures
 
 
+LCM_PORT = 7667
+
+
+def udp_sockets(port=LCM_PORT):
+    """(local address, rx_queue bytes) of every UDP socket bound to port in this namespace."""
+    found = []
+    for table in ("/proc/net/udp", "/proc/net/udp6"):
+        try:
+            with open(table) as f:
+                next(f)
+                for line in f:
+                    fields = line.split()
+                    local, queues = fields[1], fields[4]
+                    if int(local.rsplit(":", 1)[1], 16) == port:
+                        found.append((local, int(queues.split(":")[1], 16)))
+        except OSError:
+            pass
+    return found
+
+
+def wait_for_listeners(count, timeout=10.0, port=LCM_PORT):
+    """Waits until at least count sockets listen on port: a program such as lcm-logger, which
+    prints nothing when ready, has joined the multicast group once its socket exists."""
+    deadline = time.monotonic() + timeout
+    while len(udp_sockets(port)) < count:
+        if time.monotonic() > deadline:
+            check(False, "%d listeners on port %d after %.0f s, expected %d" % (
+                len(udp_sockets(port)), port, timeout, count))
+            return
+        time.sleep(0.02)
+
+
+def wait_until_drained(timeout=10.0, port=LCM_PORT):
+    """Waits until every socket on port has read all its datagrams (rx_queue 0, twice in a row):
+    a listener under load may not have read the last message when a fixed sleep ends."""
+    deadline = time.monotonic() + timeout
+    quiet = 0
+    while quiet < 2:
+        if time.monotonic() > deadline:
+            check(False, "datagrams still queued on port %d after %.0f s" % (port, timeout))
+            return
+        quiet = quiet + 1 if all(q == 0 for _, q in udp_sockets(port)) else 0
+        time.sleep(0.05)
+
+
 class Collector:
     """Receives messages on some channels in a background thread, raw bytes and arrival order."""
 
