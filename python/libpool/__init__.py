@@ -404,6 +404,11 @@ class Sim:
         return _lib().pool_sim_time(self._p())
 
     @property
+    def end_time(self):
+        """s, the instant the final states belong to: max_time for a shot cut there, else time."""
+        return _lib().pool_sim_end_time(self._p())
+
+    @property
     def ball_count(self):
         return _lib().pool_sim_ball_count(self._p())
 

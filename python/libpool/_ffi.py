@@ -130,6 +130,7 @@ _PROTOTYPES = {
     "pool_sim_run_until": (c_int, [_sim_p, c_double]),
     "pool_sim_stop_reason": (c_int, [_sim_p]),
     "pool_sim_time": (c_double, [_sim_p]),
+    "pool_sim_end_time": (c_double, [_sim_p]),
     "pool_sim_ball_count": (c_int, [_sim_p]),
     "pool_sim_balls": (POINTER(BallState), [_sim_p]),
     "pool_sim_state_at": (c_int, [_sim_p, c_double, POINTER(BallState)]),

@@ -255,6 +255,8 @@ class Reuse(unittest.TestCase):
             sim.break_strike(8.0)
             self.assertEqual(sim.run(), "max_time")
             self.assertLessEqual(sim.time, 0.5)
+            self.assertEqual(sim.end_time, 0.5)
+            self.assertNotEqual(sim.state_at(sim.end_time), sim.state_at(sim.time))  # still moving
 
 
 class Quartic(unittest.TestCase):
