@@ -9,11 +9,16 @@
 
 Angles are DEGREES in this module (as in the scenario files); the C API takes radians.
 Lengths in metres, speeds in m/s, spins in rad/s. Failed calls raise PoolError.
+
+Threads: every Sim has a lock (Sim.lock) that each of its methods holds while it uses the C
+simulation, so calls on one Sim from several threads run one at a time; close() waits for a call
+running in another thread. Everything returned is a Python copy that close() cannot invalidate.
 """
 
 import math
 import struct
 import sys
+import threading
 from ctypes import addressof, byref, c_double, c_int, c_void_p, cast, sizeof, string_at
 from dataclasses import dataclass
 from typing import Optional, Tuple
@@ -76,6 +81,21 @@ def _vec(v, name):
     return Vec3(*t)
 
 
+def _c_string(value, name):
+    """value as the bytes of a C string argument. C reads a string up to its first NUL, so
+    "wpa-9ft\\x00x" would silently arrive as "wpa-9ft": a NUL is refused, as is text that has no
+    UTF-8 form (lone surrogates) and anything that is not a str (ValueError / TypeError naming
+    the argument)."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: expected a str, got {type(value).__name__}")
+    if "\0" in value:
+        raise ValueError(f"{name}: contains a NUL character: {value!r}")
+    try:
+        return value.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ValueError(f"{name}: not valid text (no UTF-8 form): {value!r}") from None
+
+
 def _int32(v, name):
     if isinstance(v, bool) or int(v) != v or not -2**31 <= int(v) < 2**31:
         raise PoolError(_ERR_INVALID_ARGUMENT, f"{name}: must be a 32-bit integer")
@@ -135,11 +155,13 @@ _EVENT_FMT = struct.Struct("=d5i4x")
 assert _BALL_FMT.size == sizeof(CBallState) and _EVENT_FMT.size == sizeof(CEvent)
 
 
-def _balls_raw(ptr, n):
-    """Ball records from n pool_ball_state at ptr."""
-    if n <= 0:
-        return []
-    raw = string_at(ptr, n * _BALL_FMT.size)
+def _copy_balls(ptr, n):
+    """The bytes of n pool_ball_state at ptr: a copy, so later calls and close() may free them."""
+    return string_at(ptr, n * _BALL_FMT.size) if n > 0 else b""
+
+
+def _unpack_balls(raw):
+    """Ball records from bytes copied by _copy_balls."""
     return [Ball(i, _motion_name(m), (px, py, pz), (vx, vy, vz), (wx, wy, wz))
             for i, m, px, py, pz, vx, vy, vz, wx, wy, wz in _BALL_FMT.iter_unpack(raw)]
 
@@ -152,9 +174,14 @@ def default_table():
 
 
 def table_preset(name):
-    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft"."""
+    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft". A name holding a NUL
+    character raises ValueError (TypeError if not a str); an unknown one, PoolError."""
+    return _table_preset(name, "table_preset: name")
+
+
+def _table_preset(name, arg):
     t = TableDef()
-    code = _lib().pool_table_preset(str(name).encode(), byref(t))
+    code = _lib().pool_table_preset(_c_string(name, arg), byref(t))
     if code < 0:
         raise PoolError(code, f"table.preset: unknown preset '{name}'")
     return t
@@ -249,7 +276,7 @@ def _five(coeffs):
 def _sim_def(table, params, max_time, max_events, airborne):
     d = default_sim_def()
     if table is not None:
-        d.table = table_preset(table) if isinstance(table, str) else table
+        d.table = _table_preset(table, "table") if isinstance(table, str) else table
     if params is not None:
         d.params = params
     if max_time is not None:
@@ -265,23 +292,54 @@ class Sim:
     call close(); reset() starts a new shot reusing every buffer (the candidate-shot loop).
 
     table: a preset name ("wpa-9ft"...) or a TableDef; params: a Params (default_params());
-    max_time in s, max_events; airborne is rejected by the library for now."""
+    max_time in s, max_events; airborne is rejected by the library for now.
+
+    Threads: each method holds the Sim's lock (Sim.lock, reentrant) while it uses the C
+    simulation, so calls from several threads run one after the other (a long run() makes the
+    others wait); hold the lock yourself to make a sequence of calls atomic. close() waits for a
+    call running in another thread, which then returns normally; calls after close() raise
+    PoolError (POOL_ERR_STATE, "sim: closed"). What the methods return is copied out of the
+    simulation before the lock is released."""
 
     def __init__(self, table=None, params=None, max_time=None, max_events=None, airborne=False):
+        # Before anything that can raise, so close() and __del__ work on a half-made Sim.
+        self._sim = None
+        self._lock = threading.RLock()
         self._def = _sim_def(table, params, max_time, max_events, airborne)
-        self._sim = c_void_p()
+        lib = _lib()
+        # Kept so __del__ can still free the simulation at interpreter shutdown, when the module's
+        # globals may already be gone.
+        self._destroy = lib.pool_sim_destroy
+        handle = c_void_p()
         err = CError()
-        _check(_lib().pool_sim_create(byref(self._def), byref(self._sim), byref(err)), err)
-        self._count = c_int()
-        self._err = CError()  # reused by the hot calls
+        _check(lib.pool_sim_create(byref(self._def), byref(handle), byref(err)), err)
+        self._sim = handle
+        self._count = c_int()  # these three are reused by the hot calls, under the lock
+        self._err = CError()
         self._states = None  # state_at buffer, grown to the ball count
 
     # lifetime
+    @property
+    def lock(self):
+        """The Sim's reentrant lock: `with sim.lock:` makes several calls one atomic step for
+        other threads (e.g. reset, rack, strike, run). Every method takes it too."""
+        return self._lock
+
+    @property
+    def closed(self):
+        """True once close() has freed the simulation."""
+        return not self._sim
+
     def close(self):
-        """Frees the simulation (idempotent)."""
-        if getattr(self, "_sim", None):
-            _lib().pool_sim_destroy(self._sim)
-            self._sim = c_void_p()
+        """Frees the simulation (idempotent). If another thread is inside a call on this Sim,
+        waits for that call to return (it completes normally); later calls raise PoolError."""
+        lock = getattr(self, "_lock", None)
+        if lock is None:  # __init__ did not get that far
+            return
+        with lock:
+            handle, self._sim = self._sim, None
+            if handle:
+                self._destroy(handle)
 
     def __enter__(self):
         return self
@@ -290,12 +348,30 @@ class Sim:
         self.close()
 
     def __del__(self):
-        try:
-            self.close()
-        except Exception:  # interpreter shutdown may have torn down the module already
-            pass
+        # Called only once nothing refers to this Sim, so no thread can be inside one of its
+        # methods (each holds self): freeing needs no lock, and taking none means a finalizer run
+        # by the garbage collector in any thread can never block, even on a lock that a thread
+        # took with `with sim.lock:` and still holds.
+        handle = getattr(self, "_sim", None)
+        if handle:
+            self._sim = None
+            try:
+                self._destroy(handle)
+            except Exception:  # nothing to report to from a finalizer
+                pass
+
+    # copy.copy would give two Sims one C simulation, freed twice: refused, as is pickling.
+    def __copy__(self):
+        raise TypeError("a Sim cannot be copied (it owns a C simulation): make another Sim")
+
+    def __deepcopy__(self, memo):
+        self.__copy__()
+
+    def __reduce_ex__(self, protocol):
+        raise TypeError("a Sim cannot be pickled (it owns a C simulation)")
 
     def _p(self):
+        """The C handle; call with the lock held, and use it only until releasing the lock."""
         if not self._sim:
             raise PoolError(_ERR_STATE, "sim: closed")
         return self._sim
@@ -303,9 +379,11 @@ class Sim:
     @property
     def definition(self):
         """The SimDef in use (a copy)."""
-        d = SimDef()
-        d.table, d.params, d.airborne = self._def.table, self._def.params, self._def.airborne
-        d.max_time, d.max_events = self._def.max_time, self._def.max_events
+        with self._lock:
+            src = self._def
+            d = SimDef()
+            d.table, d.params, d.airborne = src.table, src.params, src.airborne
+            d.max_time, d.max_events = src.max_time, src.max_events
         return d
 
     @property
@@ -319,48 +397,54 @@ class Sim:
     def reset(self, table=None, params=None, max_time=None, max_events=None, airborne=None):
         """Removes every ball and event (a new shot), keeping memory. With arguments, changes the
         definition too (others keep their current values)."""
-        p = self._p()
-        err = CError()
-        if table is None and params is None and max_time is None and max_events is None \
-                and airborne is None:
-            _check(_lib().pool_sim_reset(p, None, byref(err)), err)
-            return
-        d = _sim_def(table if table is not None else self._def.table,
-                     params if params is not None else self._def.params,
-                     max_time if max_time is not None else self._def.max_time,
-                     max_events if max_events is not None else self._def.max_events,
-                     airborne if airborne is not None else self._def.airborne)
-        _check(_lib().pool_sim_reset(p, byref(d), byref(err)), err)
-        self._def = d
+        with self._lock:
+            p = self._p()
+            err = CError()
+            if table is None and params is None and max_time is None and max_events is None \
+                    and airborne is None:
+                _check(_lib().pool_sim_reset(p, None, byref(err)), err)
+                return
+            cur = self._def
+            d = _sim_def(table if table is not None else cur.table,
+                         params if params is not None else cur.params,
+                         max_time if max_time is not None else cur.max_time,
+                         max_events if max_events is not None else cur.max_events,
+                         airborne if airborne is not None else cur.airborne)
+            _check(_lib().pool_sim_reset(p, byref(d), byref(err)), err)
+            self._def = d
 
     # setup
     def add_ball(self, id, pos, vel=(0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0)):
         """Adds a ball before the shot. pos is (x, y) on the cloth (z = R) or (x, y, z)."""
-        if len(pos) == 2:
-            pos = (pos[0], pos[1], self._def.params.ball_radius)
-        # Vec3(*v) would zero-fill a short sequence silently, hence the length checks.
-        if len(pos) != 3 or len(vel) != 3 or len(omega) != 3:
-            _vec(pos, "ball.pos"), _vec(vel, "ball.vel"), _vec(omega, "ball.omega")
-        if type(id) is not int or not -0x80000000 <= id <= 0x7FFFFFFF:
-            id = _int32(id, "ball.id")
-        s = CBallState(id, 0, Vec3(*pos), Vec3(*vel), Vec3(*omega))
-        _check(_lib().pool_sim_add_ball(self._p(), byref(s), byref(self._err)), self._err)
+        with self._lock:
+            if len(pos) == 2:
+                pos = (pos[0], pos[1], self._def.params.ball_radius)
+            # Vec3(*v) would zero-fill a short sequence silently, hence the length checks.
+            if len(pos) != 3 or len(vel) != 3 or len(omega) != 3:
+                _vec(pos, "ball.pos"), _vec(vel, "ball.vel"), _vec(omega, "ball.omega")
+            if type(id) is not int or not -0x80000000 <= id <= 0x7FFFFFFF:
+                id = _int32(id, "ball.id")
+            s = CBallState(id, 0, Vec3(*pos), Vec3(*vel), Vec3(*omega))
+            _check(_lib().pool_sim_add_ball(self._p(), byref(s), byref(self._err)), self._err)
 
     def _add_c(self, states):
-        p, err, add = self._p(), CError(), _lib().pool_sim_add_ball
-        for s in states:
-            _check(add(p, byref(s), byref(err)), err)
+        with self._lock:
+            p, err, add = self._p(), self._err, _lib().pool_sim_add_ball
+            for s in states:
+                _check(add(p, byref(s), byref(err)), err)
 
     def add_balls(self, balls):
         """Adds Ball records (e.g. from rack() or state_at())."""
-        for b in balls:
-            self.add_ball(b.id, b.pos, b.vel, b.omega)
+        with self._lock:
+            for b in balls:
+                self.add_ball(b.id, b.pos, b.vel, b.omega)
 
     def rack(self, kind, gap=0.0):
         """Adds a standard rack ("8ball" or "9ball", cue ball id 0 on the head spot) for this
         sim's table and ball radius; returns the balls added."""
-        states = _rack_c(kind, gap, self._def.table, self._def.params)
-        self._add_c(states)
+        with self._lock:
+            states = _rack_c(kind, gap, self._def.table, self._def.params)
+            self._add_c(states)
         return [Ball._from_c(s) for s in states]
 
     def strike(self, ball_id, speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0):
@@ -370,9 +454,10 @@ class Sim:
 
     def strike_c(self, ball_id, strike):
         """Cue strike with a C Strike (radians), e.g. break_strike(speed)."""
-        err = CError()
-        _check(_lib().pool_sim_strike(self._p(), _int32(ball_id, "strike.ball"), byref(strike),
-                                      byref(err)), err)
+        ball = _int32(ball_id, "strike.ball")
+        with self._lock:
+            err = self._err
+            _check(_lib().pool_sim_strike(self._p(), ball, byref(strike), byref(err)), err)
 
     def break_strike(self, speed, ball_id=0):
         """The centre-ball break (pool_break_strike) on the cue ball."""
@@ -381,79 +466,97 @@ class Sim:
     # running
     def step(self):
         """Processes the next event; False when the shot is over (see stop_reason)."""
-        return _check(_lib().pool_sim_step(self._p())) == 1
+        with self._lock:
+            return _check(_lib().pool_sim_step(self._p())) == 1
 
     def run(self):
-        """Runs the shot to its end (rest, max_time or max_events); returns stop_reason."""
-        _check(_lib().pool_sim_run(self._p()))
-        return self.stop_reason
+        """Runs the shot to its end (rest, max_time or max_events); returns stop_reason. Other
+        threads' calls on this Sim, close() included, wait until it returns."""
+        with self._lock:
+            _check(_lib().pool_sim_run(self._p()))
+            return self.stop_reason
 
     def run_until(self, t):
         """Processes every event at or before t (s)."""
-        _check(_lib().pool_sim_run_until(self._p(), float(t)))
+        t = float(t)
+        with self._lock:
+            _check(_lib().pool_sim_run_until(self._p(), t))
 
     # results
     @property
     def stop_reason(self):
         """None while events remain, else "rest", "max_time" or "max_events"."""
-        return _STOP_NAMES[_lib().pool_sim_stop_reason(self._p())]
+        with self._lock:
+            return _STOP_NAMES[_lib().pool_sim_stop_reason(self._p())]
 
     @property
     def time(self):
         """s, time of the last processed event."""
-        return _lib().pool_sim_time(self._p())
+        with self._lock:
+            return _lib().pool_sim_time(self._p())
 
     @property
     def end_time(self):
         """s, the instant the final states belong to: max_time for a shot cut there, else time."""
-        return _lib().pool_sim_end_time(self._p())
+        with self._lock:
+            return _lib().pool_sim_end_time(self._p())
 
     @property
     def ball_count(self):
-        return _lib().pool_sim_ball_count(self._p())
+        with self._lock:
+            return _lib().pool_sim_ball_count(self._p())
+
+    def _balls_bytes(self):
+        with self._lock:
+            lib, p = _lib(), self._p()
+            return _copy_balls(lib.pool_sim_balls(p), lib.pool_sim_ball_count(p))
 
     @property
     def balls(self):
         """Every ball as of the last event that involved it, by insertion order."""
-        lib, p = _lib(), self._p()
-        return _balls_raw(lib.pool_sim_balls(p), lib.pool_sim_ball_count(p))
+        return _unpack_balls(self._balls_bytes())
 
     @property
     def pocketed(self):
         """Ids of the balls pocketed so far."""
-        lib, p = _lib(), self._p()
-        n = lib.pool_sim_ball_count(p)
-        if n <= 0:
-            return []
-        raw = string_at(lib.pool_sim_balls(p), n * _BALL_FMT.size)
-        return [rec[0] for rec in _BALL_FMT.iter_unpack(raw) if rec[1] == _MOTION_POCKETED]
+        return [rec[0] for rec in _BALL_FMT.iter_unpack(self._balls_bytes())
+                if rec[1] == _MOTION_POCKETED]
 
     @property
     def event_count(self):
-        _lib().pool_sim_events(self._p(), byref(self._count))
-        return self._count.value
+        with self._lock:
+            _lib().pool_sim_events(self._p(), byref(self._count))
+            return self._count.value
 
     @property
     def events(self):
         """Every processed event, in time order, as EventRecord."""
-        lib, p = _lib(), self._p()
-        evs = lib.pool_sim_events(p, byref(self._count))
-        n = self._count.value
-        if n == 0:
-            return []
-        events = list(_EVENT_FMT.iter_unpack(string_at(evs, n * _EVENT_FMT.size)))
-        # The after-states of all events live in one array indexed by first_state (pool/event.h);
-        # read it at once when pool_sim_event_states confirms that, else event by event.
-        first = cast(lib.pool_sim_event_states(p, evs), c_void_p).value
-        last = cast(lib.pool_sim_event_states(p, byref(evs[n - 1])), c_void_p).value
-        base = first - events[0][5] * _BALL_FMT.size
-        if last == base + events[-1][5] * _BALL_FMT.size:
-            total = max(e[5] + e[4] for e in events)
-            states = _balls_raw(base, total)
+        with self._lock:
+            # Copy the C arrays while holding the lock; build the records after releasing it.
+            lib, p = _lib(), self._p()
+            evs = lib.pool_sim_events(p, byref(self._count))
+            n = self._count.value
+            if n == 0:
+                return []
+            events = list(_EVENT_FMT.iter_unpack(string_at(evs, n * _EVENT_FMT.size)))
+            # The after-states of all events live in one array indexed by first_state
+            # (pool/event.h); copy it at once when pool_sim_event_states confirms that, else
+            # event by event.
+            first = cast(lib.pool_sim_event_states(p, evs), c_void_p).value
+            last = cast(lib.pool_sim_event_states(p, byref(evs[n - 1])), c_void_p).value
+            base = first - events[0][5] * _BALL_FMT.size
+            if last == base + events[-1][5] * _BALL_FMT.size:
+                shared = _copy_balls(base, max(e[5] + e[4] for e in events))
+                apart = None
+            else:
+                shared = None
+                apart = [_copy_balls(lib.pool_sim_event_states(p, byref(evs[i])), e[4])
+                         for i, e in enumerate(events)]
+        if shared is not None:
+            states = _unpack_balls(shared)
             afters = [tuple(states[e[5]:e[5] + e[4]]) for e in events]
         else:
-            afters = [tuple(_balls_raw(lib.pool_sim_event_states(p, byref(evs[i])), e[4]))
-                      for i, e in enumerate(events)]
+            afters = [tuple(_unpack_balls(raw)) for raw in apart]
         ev_name, rail_name, pocket_name = (_name_table("pool_event_type_name"),
                                            _name_table("pool_rail_name"),
                                            _name_table("pool_pocket_name"))
@@ -464,9 +567,12 @@ class Sim:
     def state_at(self, t):
         """Every ball at time t (exact, closed form between events), by insertion order; t must
         not exceed the processed time unless the shot is over."""
-        lib, p = _lib(), self._p()
-        n = lib.pool_sim_ball_count(p)
-        if self._states is None or len(self._states) < max(n, 1):
-            self._states = (CBallState * max(n, 16))()
-        _check(lib.pool_sim_state_at(p, float(t), self._states))
-        return _balls_raw(addressof(self._states), n)
+        t = float(t)
+        with self._lock:
+            lib, p = _lib(), self._p()
+            n = lib.pool_sim_ball_count(p)
+            if self._states is None or len(self._states) < max(n, 1):
+                self._states = (CBallState * max(n, 16))()
+            _check(lib.pool_sim_state_at(p, t, self._states))
+            raw = _copy_balls(addressof(self._states), n)
+        return _unpack_balls(raw)

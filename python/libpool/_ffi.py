@@ -7,6 +7,7 @@ against a C program compiled from those headers, so a change on either side fail
 import ctypes
 import ctypes.util
 import os
+import threading
 from ctypes import POINTER, c_bool, c_char, c_char_p, c_double, c_int, c_int32, c_void_p
 
 __all__ = [
@@ -153,10 +154,19 @@ def library_path():
 
 
 _lib = None
+_load_lock = threading.Lock()  # two threads' first calls load and set up the library once
 
 
 def load():
-    """The loaded library with every prototype set (loaded once)."""
+    """The loaded library with every prototype set (loaded once; safe from several threads)."""
+    lib = _lib
+    if lib is not None:
+        return lib
+    with _load_lock:
+        return _load_locked()
+
+
+def _load_locked():
     global _lib
     if _lib is None:
         path = library_path()
