@@ -61,7 +61,8 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 			o->help = true;
 		} else if (strcmp(a, "8ball") == 0 || strcmp(a, "9ball") == 0) {
 			if (have_kind)
-				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one rack)", a);
+				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one rack)",
+				                            pool_cli_arg(a));
 			o->kind = a[0] == '8' ? POOL_RACK_8BALL : POOL_RACK_9BALL;
 			have_kind = true;
 		} else if (strcmp(a, "--airborne") == 0) {
@@ -69,40 +70,46 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 		} else if (a[0] == '-' && a[1] != '\0' && !value) {
 			if (strcmp(a, "--speed") && strcmp(a, "--gap") && strcmp(a, "--spin") &&
 			    strcmp(a, "--phi") && strcmp(a, "--theta") && strcmp(a, "--table") && strcmp(a, "-o"))
-				return pool_cli_usage_error(PROGRAM, "unknown option '%s'", a);
+				return pool_cli_usage_error(PROGRAM, "unknown option '%s'", pool_cli_arg(a));
 			return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
 		} else if (strcmp(a, "--speed") == 0) {
 			if (!pool_cli_parse_double(value, &o->speed) || o->speed <= 0.0)
-				return pool_cli_usage_error(PROGRAM, "--speed: '%s' is not a positive speed in m/s", value);
+				return pool_cli_usage_error(PROGRAM, "--speed: '%s' is not a positive speed in m/s",
+				                            pool_cli_arg(value));
 			++i;
 		} else if (strcmp(a, "--gap") == 0) {
 			if (!pool_cli_parse_double(value, &o->gap) || o->gap < 0.0)
-				return pool_cli_usage_error(PROGRAM, "--gap: '%s' is not a gap >= 0 in m", value);
+				return pool_cli_usage_error(PROGRAM, "--gap: '%s' is not a gap >= 0 in m",
+				                            pool_cli_arg(value));
 			++i;
 		} else if (strcmp(a, "--spin") == 0) {
 			char buffer[128];
 			snprintf(buffer, sizeof buffer, "%s", value);
 			char *comma = strchr(buffer, ',');
 			if (!comma)
-				return pool_cli_usage_error(PROGRAM, "--spin: '%s' is not A,B (tip offsets in m)", value);
+				return pool_cli_usage_error(PROGRAM, "--spin: '%s' is not A,B (tip offsets in m)",
+				                            pool_cli_arg(value));
 			*comma = '\0';
 			if (!pool_cli_parse_double(buffer, &o->a) || !pool_cli_parse_double(comma + 1, &o->b))
-				return pool_cli_usage_error(PROGRAM, "--spin: '%s' is not A,B (tip offsets in m)", value);
+				return pool_cli_usage_error(PROGRAM, "--spin: '%s' is not A,B (tip offsets in m)",
+				                            pool_cli_arg(value));
 			++i;
 		} else if (strcmp(a, "--phi") == 0) {
 			if (!pool_cli_parse_double(value, &o->phi))
-				return pool_cli_usage_error(PROGRAM, "--phi: '%s' is not an angle in degrees", value);
+				return pool_cli_usage_error(PROGRAM, "--phi: '%s' is not an angle in degrees",
+				                            pool_cli_arg(value));
 			o->has_phi = true;
 			++i;
 		} else if (strcmp(a, "--theta") == 0) {
 			if (!pool_cli_parse_double(value, &o->theta))
-				return pool_cli_usage_error(PROGRAM, "--theta: '%s' is not an angle in degrees", value);
+				return pool_cli_usage_error(PROGRAM, "--theta: '%s' is not an angle in degrees",
+				                            pool_cli_arg(value));
 			++i;
 		} else if (strcmp(a, "--table") == 0) {
 			pool_table_def t;
 			if (pool_table_preset(value, &t) != POOL_OK)
 				return pool_cli_usage_error(PROGRAM, "--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft)",
-				                            value);
+				                            pool_cli_arg(value));
 			o->table = value;
 			++i;
 		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
@@ -110,7 +117,7 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 			++i;
 		} else {
 			return pool_cli_usage_error(PROGRAM, "unknown argument '%s' (expected 8ball or 9ball, "
-			                            "or an option)", a);
+			                            "or an option)", pool_cli_arg(a));
 		}
 	}
 	if (!o->help && !have_kind)

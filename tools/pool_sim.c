@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "cli.h"
+#include "read_input.h"
 #include "scenario.h"
 #ifdef POOL_HAVE_LCM
 #include "sim_publish.h"
@@ -26,6 +27,7 @@ typedef struct sim_options {
 	bool lcm;                  ///< publish the shot on LCM (--lcm-url or --playback given)
 	const char *lcm_url;       ///< NULL = $LCM_DEFAULT_URL, else POOL_LCM_DEFAULT_URL
 	double playback_hz;        ///< > 0: real-time frames on POOL_STATE at this rate
+	size_t max_input;          ///< bytes; a longer scenario input is refused
 } sim_options;
 
 /// Called after every event appended to the simulation (the strike included), in order.
@@ -33,6 +35,7 @@ typedef void (*sim_event_hook)(const pool_sim *sim, const pool_event *event, voi
 
 static const char usage_text[] =
 	"usage: pool-sim SCENARIO.json [-o RESULT.json] [--sample DT] [--pretty] [--summary]\n"
+	"                [--max-input BYTES]\n"
 	"\n"
 	"Simulates one shot described by a libpool-scenario/1 file (\"-\" reads standard input)\n"
 	"and prints its libpool-result/1 JSON.\n"
@@ -43,6 +46,8 @@ static const char usage_text[] =
 	"                     every event (for plots and animations)\n"
 	"  --pretty           indent the JSON\n"
 	"  --summary          print events by type, pocketed balls and times on standard error\n"
+	"  --max-input BYTES  refuse a scenario input longer than BYTES (suffix k, M or G for\n"
+	"                     KiB, MiB, GiB; default 64M), from a file, a pipe or standard input\n"
 	"  --lcm-url URL      publish each event on POOL_EVENT as it is produced and the shot on\n"
 	"                     POOL_SHOT (default URL $LCM_DEFAULT_URL, else\n"
 	"                     udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608)\n"
@@ -54,12 +59,14 @@ static const char usage_text[] =
 
 static int parse_options(int argc, char **argv, sim_options *o) {
 	memset(o, 0, sizeof *o);
+	o->max_input = POOL_INPUT_DEFAULT_MAX;
 	bool only_files = false;
 	for (int i = 1; i < argc; ++i) {
 		const char *a = argv[i];
 		if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
 			if (o->scenario_path)
-				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one scenario per run)", a);
+				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one scenario per run)",
+				                            pool_cli_arg(a));
 			o->scenario_path = a;
 		} else if (strcmp(a, "--") == 0) {
 			only_files = true;
@@ -75,7 +82,14 @@ static int parse_options(int argc, char **argv, sim_options *o) {
 			const char *value = argv[++i];
 			if (!pool_cli_parse_double(value, &o->sample_dt) || o->sample_dt <= 0.0)
 				return pool_cli_usage_error(PROGRAM, "--sample: '%s' is not a positive time step in seconds",
-				                            value);
+				                            pool_cli_arg(value));
+		} else if (strcmp(a, "--max-input") == 0) {
+			if (i + 1 >= argc)
+				return pool_cli_usage_error(PROGRAM, "option %s needs a size in bytes", a);
+			const char *value = argv[++i];
+			if (!pool_parse_byte_count(value, &o->max_input))
+				return pool_cli_usage_error(PROGRAM, "--max-input: '%s' is not a size in bytes > 0 "
+				                            "(e.g. 1000000, 512k, 64M, 1G)", pool_cli_arg(value));
 		} else if (strcmp(a, "--pretty") == 0) {
 			o->pretty = true;
 		} else if (strcmp(a, "--summary") == 0) {
@@ -93,14 +107,16 @@ static int parse_options(int argc, char **argv, sim_options *o) {
 			}
 			const char *value = argv[++i];
 			if (!pool_cli_parse_double(value, &o->playback_hz) || o->playback_hz <= 0.0)
-				return pool_cli_usage_error(PROGRAM, "--playback: '%s' is not a positive rate in Hz", value);
+				return pool_cli_usage_error(PROGRAM, "--playback: '%s' is not a positive rate in Hz",
+				                            pool_cli_arg(value));
 #ifdef POOL_HAVE_LCM
 			if (o->playback_hz > POOL_LCM_PLAYBACK_MAX_HZ)
-				return pool_cli_usage_error(PROGRAM, "--playback: %s Hz is above the limit of %g Hz", value,
+				return pool_cli_usage_error(PROGRAM, "--playback: %s Hz is above the limit of %g Hz",
+				                            pool_cli_arg(value),
 				                            POOL_LCM_PLAYBACK_MAX_HZ);
 #endif
 		} else {
-			return pool_cli_usage_error(PROGRAM, "unknown option '%s'", a);
+			return pool_cli_usage_error(PROGRAM, "unknown option '%s'", pool_cli_arg(a));
 		}
 	}
 	if (!o->help && !o->scenario_path)
@@ -170,7 +186,7 @@ int main(int argc, char **argv) {
 
 	pool_scenario scenario;
 	char err[512];
-	if (pool_scenario_load_file(o.scenario_path, &scenario, err, sizeof err) != 0) {
+	if (pool_scenario_load_file_limit(o.scenario_path, o.max_input, &scenario, err, sizeof err) != 0) {
 		fprintf(stderr, "pool-sim: %s\n", err);
 		return POOL_EXIT_BAD_INPUT;
 	}

@@ -1,19 +1,31 @@
 """End-to-end tests of pool-sim, pool-rack and pool-plot (ctest label "tools").
 
 Usage: python test_commands.py --pool-sim PATH --pool-rack PATH --pool-plot PATH
-                               --python PATH --work DIR [unittest arguments]
+                               --python PATH --work DIR [--require-matplotlib]
+                               [unittest arguments]
+
+Every wait is bounded: subprocesses run with timeouts, and FIFOs are read and written by helpers
+that give up (and unblock themselves) when the other side dies or the deadline passes. The plot
+tests need matplotlib in --python: without it they are skipped with a message (or fail, with
+--require-matplotlib), and pool-plot's own message for a missing matplotlib is tested instead.
 """
 import argparse
+import functools
 import json
 import math
 import os
+import select
 import shutil
 import stat
 import subprocess
 import sys
+import threading
+import time
 import unittest
 
 ARGS = None
+HAS_MATPLOTLIB = False
+LIMIT = 64 << 20  # the commands' default --max-input, bytes
 R = 0.028575
 EVENT_TYPES = {"strike", "slide_roll", "roll_stop", "spin_stop", "ball_ball", "ball_cushion",
                "ball_table", "pocket", "off_table", "link_begin", "link_step", "link_end"}
@@ -23,8 +35,115 @@ RAILS = {"south", "north", "west", "east"}
 POCKETS = {"sw", "se", "nw", "ne", "s", "n"}
 
 
-def run(cmd, stdin=None, timeout=120):
-    return subprocess.run(cmd, input=stdin, capture_output=True, timeout=timeout)
+def run(cmd, stdin=None, timeout=120, env=None):
+    return subprocess.run(cmd, input=stdin, capture_output=True, timeout=timeout, env=env)
+
+
+def finish(proc, timeout=60):
+    """Waits for proc (killing it at the deadline); returns (returncode, stderr bytes)."""
+    try:
+        _, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        _, err = proc.communicate(timeout=30)
+        return "killed after %s s" % timeout, err
+    return proc.returncode, err
+
+
+def read_fifo(path, proc, timeout=60):
+    """Reads the FIFO path, which proc writes, to its end. Bounded: when proc exits without ever
+    opening the FIFO (pool-plot without matplotlib did), the reader blocked in open() is released
+    by opening the FIFO for writing for a moment; at the deadline proc is killed.
+    Returns (data, returncode, stderr)."""
+    result = {"data": b""}
+
+    def reader():
+        try:
+            with open(path, "rb") as f:
+                result["data"] = f.read()
+        except OSError as e:
+            result["error"] = e
+
+    thread = threading.Thread(target=reader, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + timeout
+    while thread.is_alive() and proc.poll() is None and time.monotonic() < deadline:
+        thread.join(0.05)
+    if proc.poll() is None and thread.is_alive():
+        proc.kill()
+    thread.join(2)  # a writer that has exited leaves at most a pipe buffer to read
+    if thread.is_alive():
+        try:
+            os.close(os.open(path, os.O_WRONLY | os.O_NONBLOCK))
+        except OSError:
+            pass
+        thread.join(10)
+    rc, err = finish(proc, 30)
+    return result["data"], rc, err
+
+
+def pump(fd, chunk, total, deadline):
+    """Writes chunk to fd (made non-blocking) until total bytes, EPIPE or the deadline; returns the
+    bytes written. Never blocks past the deadline, even when the reader hangs."""
+    os.set_blocking(fd, False)
+    written = 0
+    while written < total and time.monotonic() < deadline:
+        if not select.select([], [fd], [], 0.1)[1]:
+            continue
+        try:
+            written += os.write(fd, chunk[:total - written])
+        except BlockingIOError:
+            continue
+        except (BrokenPipeError, ConnectionResetError):
+            break
+    return written
+
+
+def write_fifo(path, proc, chunk, total, timeout=60):
+    """Writes chunk to the FIFO path, which proc reads, until proc stops reading (EPIPE) or total
+    bytes are written; bounded like read_fifo. Returns (bytes written, returncode, stderr)."""
+    deadline = time.monotonic() + timeout
+    fd = None
+    while fd is None and proc.poll() is None and time.monotonic() < deadline:
+        try:  # non-blocking open: ENXIO until proc has opened its end
+            fd = os.open(path, os.O_WRONLY | os.O_NONBLOCK)
+        except OSError:
+            time.sleep(0.01)
+    written = 0
+    if fd is not None:
+        try:
+            written = pump(fd, chunk, total, deadline)
+        finally:
+            os.close(fd)
+    rc, err = finish(proc, max(1, deadline - time.monotonic()))
+    return written, rc, err
+
+
+def stream_stdin(cmd, chunk, total, timeout=60):
+    """Runs cmd with a pipe of up to total bytes on its standard input, written until it stops
+    reading; bounded. Returns (bytes written, returncode, stderr)."""
+    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE)
+    deadline = time.monotonic() + timeout
+    try:
+        written = pump(proc.stdin.fileno(), chunk, total, deadline)
+    finally:
+        proc.stdin.close()
+        proc.stdin = None  # so that communicate() leaves it alone
+    rc, err = finish(proc, max(1, deadline - time.monotonic()))
+    return written, rc, err
+
+
+def assert_printable(test, text, what):
+    """text (bytes from a command's standard error) holds no control character but the newline
+    ending each line, no DEL and no C1 control."""
+    for i, c in enumerate(text):
+        if (c < 0x20 and c != 0x0A) or c == 0x7F:
+            test.fail(f"{what}: raw control byte 0x{c:02x} at {i} in {text[:300]!r}")
+    decoded = text.decode("utf-8", errors="replace")
+    for ch in decoded:
+        if 0x80 <= ord(ch) <= 0x9F or ord(ch) in (0x202E, 0x2066, 0x2067):
+            test.fail(f"{what}: raw U+{ord(ch):04X} in {decoded[:300]!r}")
 
 
 def sim(*args, stdin=None):
@@ -90,7 +209,8 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
         for args, expect in [((), b"missing"), (("--bogus", "x.json"), b"--bogus"),
                              (("x.json", "--sample", "abc"), b"--sample"),
                              (("x.json", "--sample", "-1"), b"--sample"),
-                             (("x.json", "-o"), b"-o"), (("a.json", "b.json"), b"b.json")]:
+                             (("x.json", "-o"), b"-o"), (("a.json", "b.json"), b"b.json"),
+                             (("x.json", "--max-input"), b"--max-input")]:
             r = sim(*args)
             self.assertEqual(r.returncode, 2, args)
             self.assertIn(expect, r.stderr, args)
@@ -206,9 +326,8 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             os.unlink(fifo)
         os.mkfifo(fifo)
         proc = subprocess.Popen([ARGS.pool_sim, path, "-o", fifo], stderr=subprocess.PIPE)
-        with open(fifo, "rb") as f:
-            data = f.read()
-        self.assertEqual(proc.wait(timeout=60), 0)
+        data, rc, err = read_fifo(fifo, proc)
+        self.assertEqual(rc, 0, err)
         self.assertEqual(data, expected)
         self.assertTrue(stat.S_ISFIFO(os.lstat(fifo).st_mode))
 
@@ -278,6 +397,15 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("below_cloth", with_(ball(1, pos=[1.9, 0.6, 0.01])), "balls[1].pos"),
             ("vertical_velocity", with_(ball(1, vel=[0.0, 0.0, 0.5])), "balls[1].vel: vertical velocity 0.5 m/s"),
             ("radius_too_big", with_(lambda d: d.update(params={"ball_radius": 1.0})), "params.ball_radius"),
+            # 0.4 m R^2 underflows: the radius is named, not ball_mass (issue 9).
+            ("radius_tiny", with_(lambda d: d.update(params={"ball_radius": 1e-300})),
+             "params.ball_radius: 1e-300 m is out of range"),
+            ("radius_subnormal_inertia", with_(lambda d: d.update(params={"ball_radius": 1e-160})),
+             "params.ball_radius: 1e-160 m"),
+            ("mass_subnormal", with_(lambda d: d.update(params={"ball_mass": 4.9e-324})),
+             "params.ball_mass: 4.94066e-324 kg with ball_radius 0.028575 m is out of range"),
+            ("mass_and_radius", with_(lambda d: d.update(params={"ball_mass": 1e-200, "ball_radius": 1e-100})),
+             "params.ball_mass: 1e-200 kg"),
         ]
         for name, text, expect in cases:
             with self.subTest(name=name):
@@ -307,14 +435,17 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
         empty = write("empty.json", "")
         try:
             cases = [
-                (directory, directory + ": read error: "),
-                ("/dev/null", "(document): malformed JSON at line 1"),
-                (empty, "(document): malformed JSON at line 1"),
-                (big, "(document): malformed JSON at line 1"),
+                (directory, (), directory + ": read error: "),
+                ("/dev/null", (), "(document): malformed JSON at line 1"),
+                (empty, (), "(document): malformed JSON at line 1"),
+                # Over the 64 MiB input limit: refused from its size, unread.
+                (big, (), big + ": input is larger than the limit of 67108864 bytes (104857600 bytes)"),
+                # Read with a higher limit, jansson refuses the nesting.
+                (big, ("--max-input", "200M"), "(document): malformed JSON at line 1"),
             ]
-            for path, expect in cases:
-                with self.subTest(path=path):
-                    r = sim(path, "-o", out)
+            for path, options, expect in cases:
+                with self.subTest(path=path, options=options):
+                    r = sim(path, "-o", out, *options)
                     message = r.stderr.decode()
                     self.assertEqual(r.returncode, 2, message)
                     self.assertTrue(message.startswith("pool-sim: " + expect), message)
@@ -323,6 +454,118 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
                     self.assertEqual(os.listdir(directory), [])
         finally:
             os.unlink(big)
+
+    def test_input_limit(self):
+        # Every input is read up to the limit (64 MiB unless --max-input): a device, a pipe on
+        # standard input and a FIFO that never end are refused, exit 2, naming the input.
+        message = b": input is larger than the limit of 67108864 bytes\n"
+        start = time.monotonic()
+        r = run([ARGS.pool_sim, "/dev/zero"], timeout=60)
+        self.assertEqual((r.returncode, r.stdout), (2, b""), r.stderr)
+        self.assertEqual(r.stderr, b"pool-sim: /dev/zero" + message)
+
+        chunk = b" " * (1 << 20)  # JSON whitespace: a parser reading it all would find no end
+        written, rc, err = stream_stdin([ARGS.pool_sim, "-"], chunk, 1 << 30)
+        self.assertEqual(rc, 2, err)
+        self.assertEqual(err, b"pool-sim: standard input" + message)
+        self.assertGreater(written, LIMIT)  # it read the limit, then stopped
+        self.assertLess(written, 1 << 30)
+
+        fifo = os.path.join(ARGS.work, "input.fifo")
+        if os.path.lexists(fifo):
+            os.unlink(fifo)
+        os.mkfifo(fifo)
+        proc = subprocess.Popen([ARGS.pool_sim, fifo], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        written, rc, err = write_fifo(fifo, proc, chunk, 1 << 30)
+        self.assertEqual(rc, 2, err)
+        self.assertEqual(err, b"pool-sim: " + fifo.encode() + message)
+        self.assertGreater(written, LIMIT)
+        self.assertLess(time.monotonic() - start, 60, "the three refusals must be quick")
+
+        # --max-input N: a document of N bytes passes, N + 1 bytes do not (file and pipe alike).
+        text = json.dumps(straight_shot()).encode()
+        path = write("limit.json", text.decode())
+        n = len(text)
+        for source, stdin, name in ((path, None, path), ("-", text, "standard input")):
+            with self.subTest(source=source):
+                ok = sim(source, "--max-input", str(n), stdin=stdin)
+                self.assertEqual(ok.returncode, 0, ok.stderr)
+                over = sim(source, "--max-input", str(n - 1), stdin=stdin)
+                self.assertEqual((over.returncode, over.stdout), (2, b""))
+                expect = f"pool-sim: {name}: input is larger than the limit of {n - 1} bytes"
+                self.assertTrue(over.stderr.decode().startswith(expect), over.stderr)
+        self.assertEqual(sim(path, "--max-input", "1k").returncode, 0)
+        over = sim(path, "--max-input", "0k")
+        self.assertEqual(over.returncode, 2)
+        for bad in ("0", "-1", "1.5", "12q", "", "1kk", "99999999999999999999999", "1e6"):
+            with self.subTest(value=bad):
+                r = sim(path, "--max-input", bad)
+                self.assertEqual((r.returncode, r.stdout), (2, b""), r.stderr)
+                self.assertIn(b"--max-input: '", r.stderr)
+        r = sim("--help")
+        self.assertIn(b"--max-input BYTES", r.stdout)
+
+    def test_echoed_input_is_escaped(self):
+        # Unknown keys, a preset name, jansson's quote of bad input, file names and options are
+        # echoed with control and other invisible characters escaped, and cut when long; the
+        # message still names the field and stays on one line.
+        def doc_with(**parts):
+            doc = straight_shot()
+            for where, value in parts.items():
+                if where == "top":
+                    doc.update(value)
+                else:
+                    doc.setdefault(where, {}).update(value)
+            return json.dumps(doc)
+
+        long_key = "k" * 10240
+        cases = [
+            ("esc_top", doc_with(top={"bo\x1b[31mgus": 1}), "pool-sim: bo\\u001b[31mgus: unknown field\n"),
+            ("newline_param", doc_with(params={"mu\nslide": 1}), "pool-sim: params.mu\\u000aslide: unknown field\n"),
+            ("esc_ball", json.dumps(straight_shot()).replace('"id": 1,', '"id": 1, "c\\u001b]0;x\\u0007": 1,'),
+             "pool-sim: balls[1].c\\u001b]0;x\\u0007: unknown field\n"),
+            ("bidi_table", doc_with(table={"w\u202eidth": 1}), "pool-sim: table.w\\u202eidth: unknown field\n"),
+            ("c1_option", doc_with(options={"x\u009by": 1}), "pool-sim: options.x\\u009by: unknown field\n"),
+            ("preset", doc_with(table={"preset": "\x1b[2Jwpa"}),
+             'pool-sim: table.preset: unknown preset "\\u001b[2Jwpa" (wpa-9ft, wpa-8ft, wpa-7ft)\n'),
+            # jansson refuses a NUL in a key; its message quotes the source text, escapes and all.
+            ("nul_key", doc_with(params={"a\u0000b": 1}), "pool-sim: (document): malformed JSON at line 1"),
+            # Raw control bytes in a string are not JSON: jansson's quote of them is escaped.
+            ("raw_esc", '{"format": "libpool-scenario/1", "\x1b[2J": 1}', "pool-sim: (document): malformed JSON at line 1"),
+            ("bad_utf8", b'{"format": "libpool-scenario/1", "x\xff\x9b": 1}', "pool-sim: (document): malformed JSON at line 1"),
+            ("long_key", doc_with(params={long_key: 1}),
+             "pool-sim: params." + "k" * 79 + "...(10240 bytes): unknown field\n"),
+        ]
+        for name, text, expect in cases:
+            with self.subTest(name=name):
+                path = os.path.join(ARGS.work, f"escape_{name}.json")
+                with open(path, "wb") as f:
+                    f.write(text if isinstance(text, bytes) else text.encode())
+                r = sim(path)
+                self.assertEqual((r.returncode, r.stdout), (2, b""), r.stderr)
+                assert_printable(self, r.stderr, name)
+                message = r.stderr.decode()
+                self.assertTrue(message.startswith(expect) if not expect.endswith("\n") else message == expect,
+                                f"{name}: {message!r}")
+                self.assertEqual(message.count("\n"), 1, message)
+                self.assertLess(len(r.stderr), 400, name)
+        # File names and command-line arguments.
+        odd = os.path.join(ARGS.work, "no\x1b[2Jsuch\nfile.json")
+        r = sim(odd)
+        self.assertEqual(r.returncode, 2)
+        assert_printable(self, r.stderr, "file name")
+        self.assertIn(b"no\\u001b[2Jsuch\\u000afile.json: No such file or directory", r.stderr)
+        for args in (("--bogus\x1b[2J",), ("x.json", "y\x07.json"), ("x.json", "--sample", "\x1b"),
+                     ("x.json", "--max-input", "\x1b[1m")):
+            with self.subTest(args=args):
+                r = sim(*args)
+                self.assertEqual(r.returncode, 2, args)
+                assert_printable(self, r.stderr, repr(args))
+                self.assertTrue(b"\\u001b" in r.stderr or b"\\u0007" in r.stderr, r.stderr)
+        r = sim(write("ok_escape.json", straight_shot()), "-o", os.path.join(ARGS.work, "no", "\x1b.json"))
+        self.assertNotEqual(r.returncode, 0)
+        assert_printable(self, r.stderr, "output name")
+        self.assertIn(b"\\u001b.json: No such file or directory", r.stderr)
 
     def test_valid_variants(self):
         # Explicit table fields over a preset, parameters, a moving ball without a strike, 3D pos.
@@ -394,6 +637,16 @@ class TestRack(unittest.TestCase, ResultChecks):
         r = run([ARGS.pool_rack, "8ball", "--spin", "0.02,0.025"])
         self.assertEqual(r.returncode, 2)
         self.assertIn(b"strike", r.stderr)
+        # Echoed arguments are escaped and cut.
+        for args, expect in [(("8ball", "--table", "\x1b[2J"), b"--table: unknown preset '\\u001b[2J'"),
+                             (("8ball", "--speed", "1\n2"), b"--speed: '1\\u000a2'"),
+                             (("x\x9b\x07",), b"unknown argument 'x\\u009b\\u0007'"),
+                             (("8ball", "--gap", "9" * 5000), b"...(5000 bytes)' is not a gap")]:
+            r = run([ARGS.pool_rack, *args])
+            self.assertEqual(r.returncode, 2, args)
+            assert_printable(self, r.stderr, repr(args))
+            self.assertIn(expect, r.stderr, args)
+            self.assertLess(len(r.stderr), 400, args)
 
     def test_racks_are_tight_and_on_the_table(self):
         for kind, n in (("8ball", 16), ("9ball", 10)):
@@ -435,6 +688,19 @@ class TestRack(unittest.TestCase, ResultChecks):
             self.assertEqual(len(json.load(f)["balls"]), 10)
 
 
+def needs_matplotlib(test):
+    """Skips the test when --python has no matplotlib (fails instead with --require-matplotlib)."""
+    @functools.wraps(test)
+    def wrapper(self):
+        if not HAS_MATPLOTLIB:
+            if ARGS.require_matplotlib:
+                self.fail(f"{ARGS.python} cannot import matplotlib, which --require-matplotlib "
+                          "demands (it could at configure time)")
+            self.skipTest(f"{ARGS.python} has no matplotlib (tools/setup.sh installs it)")
+        return test(self)
+    return wrapper
+
+
 class TestPlot(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -443,10 +709,19 @@ class TestPlot(unittest.TestCase):
         cls.result = os.path.join(ARGS.work, "plot_result.json")
         r = sim(scenario, "--sample", "0.02", "-o", cls.result)
         assert r.returncode == 0, r.stderr
+        # A matplotlib that fails to import, first on the path: pool-plot as on a Python
+        # without matplotlib, whatever --python has. Its exit status tells whether pool-plot
+        # accepted the input (1: it got as far as drawing) or refused it (2).
+        stub = os.path.join(ARGS.work, "no_matplotlib", "matplotlib")
+        os.makedirs(stub, exist_ok=True)
+        with open(os.path.join(stub, "__init__.py"), "w", encoding="utf-8") as f:
+            f.write('raise ImportError("No module named \'matplotlib\' (test stub)")\n')
+        cls.no_mpl_env = dict(os.environ, PYTHONPATH=os.path.dirname(stub))
 
-    def plot(self, *args):
-        return run([ARGS.python, ARGS.pool_plot, *args], timeout=180)
+    def plot(self, *args, env=None, stdin=None):
+        return run([ARGS.python, ARGS.pool_plot, *args], timeout=180, env=env, stdin=stdin)
 
+    @needs_matplotlib
     def test_png(self):
         out = os.path.join(ARGS.work, "break.png")
         r = self.plot(self.result, "-o", out)
@@ -463,6 +738,7 @@ class TestPlot(unittest.TestCase):
         with open(again, "rb") as f:
             self.assertEqual(f.read(), data, "the same result must give the same picture")
 
+    @needs_matplotlib
     def test_svg(self):
         out = os.path.join(ARGS.work, "break.svg")
         r = self.plot(self.result, "-o", out)
@@ -472,23 +748,103 @@ class TestPlot(unittest.TestCase):
         self.assertIn("<svg", text)
         self.assertIn("</svg>", text)
 
-    def test_pipe_output(self):
-        fifo = os.path.join(ARGS.work, "plot.fifo.png")
+    def fifo(self, name):
+        fifo = os.path.join(ARGS.work, name)
         if os.path.lexists(fifo):
             os.unlink(fifo)
         os.mkfifo(fifo)
+        return fifo
+
+    @needs_matplotlib
+    def test_pipe_output(self):
+        fifo = self.fifo("plot.fifo.png")
         proc = subprocess.Popen([ARGS.python, ARGS.pool_plot, self.result, "-o", fifo],
                                 stderr=subprocess.PIPE)
-        with open(fifo, "rb") as f:
-            data = f.read()
-        self.assertEqual(proc.wait(timeout=180), 0)
+        data, rc, err = read_fifo(fifo, proc, timeout=180)
+        self.assertEqual(rc, 0, err)
         self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n")
         self.assertTrue(stat.S_ISFIFO(os.lstat(fifo).st_mode))
+
+    def test_without_matplotlib(self):
+        # One message and exit 1, no output file, and a FIFO reader that does not wait forever
+        # for the picture (this test hung when pool-plot died before opening the FIFO).
+        out = os.path.join(ARGS.work, "no_mpl.png")
+        if os.path.exists(out):
+            os.unlink(out)
+        r = self.plot(self.result, "-o", out, env=self.no_mpl_env)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        message = r.stderr.decode()
+        self.assertTrue(message.startswith("pool-plot: matplotlib is not installed for "), message)
+        self.assertIn(".venv/bin/python", message)
+        self.assertEqual(message.count("\n"), 1, message)
+        self.assertFalse(os.path.exists(out))
+        fifo = self.fifo("no_mpl.fifo.png")
+        start = time.monotonic()
+        proc = subprocess.Popen([ARGS.python, ARGS.pool_plot, self.result, "-o", fifo],
+                                stderr=subprocess.PIPE, env=self.no_mpl_env)
+        data, rc, err = read_fifo(fifo, proc, timeout=120)
+        self.assertEqual((rc, data), (1, b""), err)
+        self.assertIn(b"matplotlib is not installed", err)
+        self.assertLess(time.monotonic() - start, 60)
+
+    def test_input_limit(self):
+        # Inputs over the limit (64 MiB unless --max-input) exit 2 naming the input, from a
+        # device, a pipe or a file; input within it gets as far as drawing (exit 1 here: the
+        # matplotlib stub).
+        out = os.path.join(ARGS.work, "limit.png")
+        env = self.no_mpl_env
+        message = b": input is larger than the limit of 67108864 bytes\n"
+        r = run([ARGS.python, ARGS.pool_plot, "/dev/zero", "-o", out], timeout=120, env=env)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr, b"pool-plot: /dev/zero" + message)
+        written, rc, err = stream_stdin([ARGS.python, ARGS.pool_plot, "-", "-o", out],
+                                        b" " * (1 << 20), 1 << 30, timeout=120)
+        self.assertEqual(rc, 2, err)
+        self.assertEqual(err, b"pool-plot: standard input" + message)
+        self.assertGreater(written, LIMIT)
+        size = os.path.getsize(self.result)
+        for limit, status in ((str(size), 1), (str(size - 1), 2), ("1M", 1), ("1k", 2)):
+            with self.subTest(limit=limit):
+                r = self.plot(self.result, "-o", out, "--max-input", limit, env=env)
+                self.assertEqual(r.returncode, status, r.stderr)
+                if status == 2:
+                    self.assertIn(f"plot_result.json: input is larger than the limit of".encode(), r.stderr)
+        with open(self.result, "rb") as f:
+            text = f.read()
+        r = self.plot("-", "-o", out, "--max-input", str(size - 1), env=env, stdin=text)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertTrue(r.stderr.startswith(b"pool-plot: standard input: input is larger"), r.stderr)
+        for bad in ("0", "-1", "1.5", "12q", "", "1kk"):
+            with self.subTest(value=bad):
+                r = self.plot(self.result, "-o", out, "--max-input", bad, env=env)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertIn(b"--max-input", r.stderr)
+
+    def test_echoed_input_is_escaped(self):
+        with open(self.result, encoding="utf-8") as f:
+            doc = json.load(f)
+        doc["events"][1]["type"] = "\x1b]0;owned\x07" + "x" * 3000
+        bad_type = write("plot_bad_type.json", json.dumps(doc))
+        out = os.path.join(ARGS.work, "escape.png")
+        cases = [
+            ((bad_type, "-o", out), b"events[1].type: unknown event type '\\u001b]0;owned\\u0007xxx"),
+            ((os.path.join(ARGS.work, "no\x1b[2Jfile\n.json"), "-o", out), b"no\\u001b[2Jfile\\u000a.json: "),
+            ((self.result, "-o", os.path.join(ARGS.work, "x\x1b[2J.gif")), b"x\\u001b[2J.gif' must end in .png"),
+            ((self.result, "--bogus\x1b[2J"), b"--bogus\\u001b[2J"),
+        ]
+        for args, expect in cases:
+            with self.subTest(args=args[:1]):
+                r = self.plot(*args, env=self.no_mpl_env)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                assert_printable(self, r.stderr, repr(args))
+                self.assertIn(expect, r.stderr)
+                self.assertLess(len(r.stderr), 800)
 
     def test_bad_input(self):
         bad = write("not_a_result.json", json.dumps({"format": "libpool-scenario/1"}))
         for args, expect in [((bad,), "format"), ((os.path.join(ARGS.work, "nope.json"),), "nope.json"),
                              ((write("broken.json", "{"),), "malformed"),
+                             ((write("deep.json", "[" * 100000),), "malformed"),
                              ((self.result, "-o", os.path.join(ARGS.work, "x.gif")), "-o")]:
             r = self.plot(*args)
             self.assertEqual(r.returncode, 2, args)
@@ -496,6 +852,7 @@ class TestPlot(unittest.TestCase):
         r = self.plot("--help")
         self.assertEqual(r.returncode, 0)
         self.assertIn(b"usage", r.stdout)
+        self.assertIn(b"--max-input", r.stdout)
 
 
 def main():
@@ -503,8 +860,17 @@ def main():
     parser = argparse.ArgumentParser()
     for name in ("--pool-sim", "--pool-rack", "--pool-plot", "--python", "--work"):
         parser.add_argument(name, required=True)
+    parser.add_argument("--require-matplotlib", action="store_true",
+                        help="fail, rather than skip, the plot tests when --python has no matplotlib")
     ARGS, rest = parser.parse_known_args()
     os.makedirs(ARGS.work, exist_ok=True)
+    global HAS_MATPLOTLIB
+    probe = run([ARGS.python, "-c", "import matplotlib"], timeout=120)
+    HAS_MATPLOTLIB = probe.returncode == 0
+    if not HAS_MATPLOTLIB:
+        print(f"test_commands: {ARGS.python} cannot import matplotlib: the plot tests are "
+              f"{'failed (--require-matplotlib)' if ARGS.require_matplotlib else 'skipped'}",
+              file=sys.stderr)
     unittest.main(argv=[sys.argv[0], *rest], verbosity=2)
 
 

@@ -1,4 +1,6 @@
-// Unit tests of the scenario parser, the JSON number formatting and the result writer.
+// Unit tests of the scenario parser, the JSON number formatting, the result writer, the escaping
+// of echoed input and the input size limit.
+#define _XOPEN_SOURCE 700 // mkstemp, fdopen, unlink
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -11,9 +13,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "json_writer.h"
+#include "read_input.h"
 #include "scenario.h"
+#include "text_escape.h"
 
 #define R 0.028575
 
@@ -155,6 +160,151 @@ static void test_load_file_names_the_path(void **state) {
 	assert_non_null(strstr(err, "/nonexistent/x.json: "));
 }
 
+// Echoed input is printable: controls, invalid UTF-8 and invisible characters escaped, long text
+// cut at a character boundary with its length.
+static void test_escape_text(void **state) {
+	(void)state;
+	char out[POOL_ESCAPE_SHORT];
+#define CASE(in, expect) {in, sizeof in - 1, expect}
+	static const struct {
+		const char *in;
+		size_t len;
+		const char *expect;
+	} cases[] = {
+		CASE("plain key", "plain key"),
+		CASE("a\x1b[31mb", "a\\u001b[31mb"),
+		CASE("line\nbreak\r\t", "line\\u000abreak\\u000d\\u0009"),
+		CASE("nul\0after", "nul\\u0000after"),
+		CASE("del\x7f", "del\\u007f"),
+		CASE("c1 \xc2\x9b csi", "c1 \\u009b csi"),
+		CASE("raw \x9b byte", "raw \\x9b byte"),
+		CASE("bad \xff\xc3(", "bad \\xff\\xc3("),
+		CASE("overlong \xc0\xaf", "overlong \\xc0\\xaf"),
+		CASE("surrogate \xed\xa0\x80", "surrogate \\xed\\xa0\\x80"),
+		CASE("truncated \xe2\x82", "truncated \\xe2\\x82"),
+		CASE("bidi \xe2\x80\xae!", "bidi \\u202e!"),
+		CASE("bom \xef\xbb\xbf", "bom \\ufeff"),
+		CASE("tag \xf3\xa0\x80\x81", "tag \\U000e0001"),
+		CASE("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8e\xb1", "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8e\xb1"),
+		CASE("back\\slash \"q\"", "back\\slash \"q\""),
+		CASE("", ""),
+	};
+#undef CASE
+	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i)
+		assert_string_equal(pool_escape_text(out, sizeof out, cases[i].in, cases[i].len), cases[i].expect);
+	// 10 kB: cut to the buffer, ending with the input's length.
+	char big[10240];
+	memset(big, 'k', sizeof big);
+	pool_escape_text(out, sizeof out, big, sizeof big);
+	assert_int_equal(strlen(out), sizeof out - 1);
+	assert_non_null(strstr(out, "kkk...(10240 bytes)"));
+	// Escapes and UTF-8 sequences are never split by the cut.
+	char escs[300];
+	for (size_t i = 0; i < sizeof escs; ++i)
+		escs[i] = (i % 3 == 0) ? '\x1b' : 'x';
+	pool_escape_text(out, sizeof out, escs, sizeof escs);
+	const char *suffix = strstr(out, "...(300 bytes)");
+	assert_non_null(suffix);
+	assert_int_equal(suffix[strlen("...(300 bytes)")], '\0');
+	// Before the suffix: whole "\u001b" escapes and 'x's only, in the input's pattern.
+	size_t k = 0;
+	for (const char *p = out; p < suffix; ++k) {
+		if (k % 3 == 0) {
+			assert_memory_equal(p, "\\u001b", 6);
+			p += 6;
+		} else {
+			assert_int_equal(*p, 'x');
+			p += 1;
+		}
+	}
+	char euro[100];
+	for (size_t i = 0; i + 3 <= sizeof euro; i += 3)
+		memcpy(euro + i, "\xe2\x82\xac", 3);
+	char small[20];
+	pool_escape_text(small, sizeof small, euro, 99);
+	assert_string_equal(small, "\xe2\x82\xac\xe2\x82\xac...(99 bytes)"); // 19 bytes: no third euro sign
+	// Too small for the suffix: just cut.
+	char tiny[4];
+	assert_string_equal(pool_escape_str(tiny, sizeof tiny, "\x1b[2J"), "");
+	assert_string_equal(pool_escape_str(tiny, sizeof tiny, "abcdef"), "abc");
+}
+
+// The scenario parser escapes what it echoes (unknown keys, a preset name, jansson's quotes).
+static void test_echoed_input_is_escaped(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[512];
+	static const struct {
+		const char *doc;
+		const char *expect;
+	} cases[] = {
+		{"{\"format\": \"libpool-scenario/1\", \"a\\u001bb\": 1, \"balls\": []}", "a\\u001bb: unknown field"},
+		{"{\"format\": \"libpool-scenario/1\", \"params\": {\"x\\ny\": 1}, \"balls\": []}",
+		 "params.x\\u000ay: unknown field"},
+		{"{\"format\": \"libpool-scenario/1\", \"table\": {\"preset\": \"\\u001b[2J\"}, \"balls\": []}",
+		 "table.preset: unknown preset \"\\u001b[2J\" (wpa-9ft, wpa-8ft, wpa-7ft)"},
+		{"{\"format\": \"libpool-scenario/1\", \"\x1b[2J\": 1}",
+		 "(document): malformed JSON at line 1, column 34: control character 0x1b near '\"'"},
+	};
+	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+		assert_int_equal(parse(cases[i].doc, &s, err, sizeof err), -1);
+		assert_string_equal(err, cases[i].expect);
+	}
+}
+
+// pool_read_input and pool_scenario_load_file_limit: at most the limit, else a message naming
+// the input; --max-input values.
+static void test_input_limit(void **state) {
+	(void)state;
+	char path[] = "/tmp/test_scenario_limit_XXXXXX";
+	int fd = mkstemp(path);
+	assert_true(fd >= 0);
+	const char *doc = "{\"format\": \"libpool-scenario/1\", \"balls\": [{\"id\": 0, \"pos\": [1, 0.5]}]}";
+	size_t n = strlen(doc);
+	FILE *f = fdopen(fd, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(doc, 1, n, f), n);
+	fclose(f);
+	char *data = NULL;
+	size_t length = 0;
+	char err[512];
+	assert_int_equal(pool_read_input(path, n, &data, &length, err, sizeof err), 0);
+	assert_int_equal(length, n);
+	assert_memory_equal(data, doc, n);
+	assert_int_equal(data[n], '\0');
+	free(data);
+	assert_int_equal(pool_read_input(path, n - 1, &data, &length, err, sizeof err), -1);
+	assert_null(data);
+	char expect[600];
+	snprintf(expect, sizeof expect, "%s: input is larger than the limit of %zu bytes (%zu bytes)", path, n - 1, n);
+	assert_string_equal(err, expect);
+	pool_scenario s;
+	assert_int_equal(pool_scenario_load_file_limit(path, n, &s, err, sizeof err), 0);
+	pool_scenario_free(&s);
+	assert_int_equal(pool_scenario_load_file_limit(path, 10, &s, err, sizeof err), -1);
+	assert_non_null(strstr(err, ": input is larger than the limit of 10 bytes"));
+	// A device never ends: read up to the limit, then refused.
+	assert_int_equal(pool_read_input("/dev/zero", 1000000, &data, &length, err, sizeof err), -1);
+	assert_string_equal(err, "/dev/zero: input is larger than the limit of 1000000 bytes");
+	assert_int_equal(pool_scenario_load_file("/dev/zero", &s, err, sizeof err), -1);
+	assert_string_equal(err, "/dev/zero: input is larger than the limit of 67108864 bytes");
+	unlink(path);
+
+	size_t v = 0;
+	assert_true(pool_parse_byte_count("1000", &v) && v == 1000);
+	assert_true(pool_parse_byte_count("512k", &v) && v == 512u << 10);
+	assert_true(pool_parse_byte_count("64M", &v) && v == POOL_INPUT_DEFAULT_MAX);
+	assert_true(pool_parse_byte_count("64MiB", &v) && v == POOL_INPUT_DEFAULT_MAX);
+	assert_true(pool_parse_byte_count("1g", &v) && v == (size_t)1 << 30);
+	static const char *const bad[] = {"", "0", "0k", "-1", "+1", " 1", "1 ", "1.5", "1e6", "12q", "1kk",
+	                                  "1KB", "1Mi", "99999999999999999999999", "17179869184G"};
+	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+		v = 7;
+		assert_false(pool_parse_byte_count(bad[i], &v));
+		assert_int_equal(v, 7);
+	}
+}
+
 static void test_numbers_round_trip_with_few_digits(void **state) {
 	(void)state;
 	const double values[] = {0.1, 1.0 / 3.0, 2.54, -0.028575, 1e-300, 5e-324, DBL_MAX, -2.5e17,
@@ -271,6 +421,9 @@ int main(void) {
 		cmocka_unit_test(test_errors_name_the_field),
 		cmocka_unit_test(test_tiny_error_buffer_is_safe),
 		cmocka_unit_test(test_load_file_names_the_path),
+		cmocka_unit_test(test_escape_text),
+		cmocka_unit_test(test_echoed_input_is_escaped),
+		cmocka_unit_test(test_input_limit),
 		cmocka_unit_test(test_numbers_round_trip_with_few_digits),
 		cmocka_unit_test(test_writer_escapes_and_nests),
 		cmocka_unit_test(test_result_document),

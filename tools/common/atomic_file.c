@@ -10,13 +10,21 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "text_escape.h"
+
+// "PATH: why", with the path escaped (it comes from the command line).
+static void path_error(char *err, size_t err_size, const char *path, const char *why) {
+	char shown[POOL_ESCAPE_LONG];
+	snprintf(err, err_size, "%s: %s", pool_escape_str(shown, sizeof shown, path), why);
+}
+
 // Devices and pipes (/dev/null, /dev/stdout, a FIFO) are written in place: renaming a temporary
 // file over them would replace the device node itself.
 static int write_in_place(const char *path, const char *data, size_t length, char *err,
                           size_t err_size) {
 	FILE *f = fopen(path, "wb");
 	if (!f) {
-		snprintf(err, err_size, "%s: %s", path, strerror(errno));
+		path_error(err, err_size, path, strerror(errno));
 		return -1;
 	}
 	size_t done = fwrite(data, 1, length, f);
@@ -24,7 +32,7 @@ static int write_in_place(const char *path, const char *data, size_t length, cha
 	if (fclose(f) != 0 && done == length)
 		saved = errno, done = 0;
 	if (done != length) {
-		snprintf(err, err_size, "%s: %s", path, strerror(saved ? saved : EIO));
+		path_error(err, err_size, path, strerror(saved ? saved : EIO));
 		return -1;
 	}
 	return 0;
@@ -46,7 +54,7 @@ int pool_write_file_atomic(const char *path, const char *data, size_t length, ch
 	size_t n = strlen(path);
 	char *temp = malloc(n + 16);
 	if (!temp) {
-		snprintf(err, err_size, "%s: out of memory", path);
+		path_error(err, err_size, path, "out of memory");
 		free(real);
 		return -1;
 	}
@@ -54,7 +62,7 @@ int pool_write_file_atomic(const char *path, const char *data, size_t length, ch
 	snprintf(temp, n + 16, "%s.tmpXXXXXX", path);
 	int fd = mkstemp(temp);
 	if (fd < 0) {
-		snprintf(err, err_size, "%s: %s", path, strerror(errno));
+		path_error(err, err_size, path, strerror(errno));
 		free(temp);
 		free(real);
 		return -1;
@@ -81,7 +89,7 @@ int pool_write_file_atomic(const char *path, const char *data, size_t length, ch
 	if (ok && rename(temp, path) != 0)
 		saved = errno, ok = 0;
 	if (!ok) {
-		snprintf(err, err_size, "%s: %s", path, strerror(saved ? saved : EIO));
+		path_error(err, err_size, path, strerror(saved ? saved : EIO));
 		unlink(temp);
 	}
 	free(temp);

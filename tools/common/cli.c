@@ -10,6 +10,14 @@
 
 #include "atomic_file.h"
 #include "pool/base.h"
+#include "text_escape.h"
+
+const char *pool_cli_arg(const char *arg) {
+	static char buffers[8][POOL_ESCAPE_SHORT + 16];
+	static unsigned next;
+	char *out = buffers[next++ % 8];
+	return pool_escape_str(out, sizeof buffers[0], arg);
+}
 
 int pool_cli_result_status(int result) {
 	return result == POOL_ERR_OUT_OF_MEMORY || result == POOL_ERR_INTERNAL ? POOL_EXIT_INTERNAL : POOL_EXIT_BAD_INPUT;

@@ -23,6 +23,11 @@ int pool_cli_result_status(int result);
 int pool_cli_usage_error(const char *program, const char *format, ...)
 	__attribute__((format(printf, 2, 3)));
 
+/// The command-line argument arg made safe to print (pool_escape_str, cut to about 100 bytes),
+/// for messages that quote it. Returns one of 8 static buffers used in turn: for single-threaded
+/// command-line code, at most 8 arguments per message.
+const char *pool_cli_arg(const char *arg);
+
 /// Reads the whole of text as a finite double; false (out untouched) for empty text, trailing
 /// characters, overflow, inf or nan.
 bool pool_cli_parse_double(const char *text, double *out);

@@ -4,13 +4,15 @@
 // already name the field, so the rules live in one place.
 #include "scenario.h"
 
-#include <errno.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "read_input.h"
+#include "text_escape.h"
 
 #define POOL_PI 3.14159265358979323846
 
@@ -67,9 +69,12 @@ static int check_fields(parse_ctx *ctx, json_t *obj, const char *path, const cha
 			// An empty key would give a message with no field name at all.
 			if (!key[0])
 				return fail(ctx, "%s: unknown field \"\"", path[0] ? path : "(document)");
+			// The key is the file's text: escaped and cut, so it cannot drive the terminal.
+			char shown[POOL_ESCAPE_SHORT];
+			pool_escape_str(shown, sizeof shown, key);
 			if (path[0])
-				return fail(ctx, "%s.%s: unknown field", path, key);
-			return fail(ctx, "%s: unknown field", key);
+				return fail(ctx, "%s.%s: unknown field", path, shown);
+			return fail(ctx, "%s: unknown field", shown);
 		}
 	}
 	return 0;
@@ -132,9 +137,11 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 	if (preset) {
 		if (!json_is_string(preset))
 			return fail(ctx, "table.preset: must be a string");
-		if (pool_table_preset(json_string_value(preset), def) != POOL_OK)
-			return fail(ctx, "table.preset: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)",
-			            json_string_value(preset));
+		if (pool_table_preset(json_string_value(preset), def) != POOL_OK) {
+			char shown[POOL_ESCAPE_SHORT];
+			pool_escape_text(shown, sizeof shown, json_string_value(preset), json_string_length(preset));
+			return fail(ctx, "table.preset: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)", shown);
+		}
 	}
 	struct {
 		const char *name;
@@ -193,8 +200,11 @@ static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
 			++i;
 		if (i == n && !key[0])
 			return fail(ctx, "params: unknown field \"\"");
-		if (i == n)
-			return fail(ctx, "params.%s: unknown field", key);
+		if (i == n) {
+			char shown[POOL_ESCAPE_SHORT];
+			pool_escape_str(shown, sizeof shown, key);
+			return fail(ctx, "params.%s: unknown field", shown);
+		}
 		char path[64];
 		snprintf(path, sizeof path, "params.%s", key);
 		if (get_number(ctx, value, path, names[i].field))
@@ -456,9 +466,13 @@ int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario
 		err[0] = '\0';
 	json_error_t jerr;
 	json_t *root = json_loadb(json, length, JSON_REJECT_DUPLICATES, &jerr);
-	if (!root)
+	if (!root) {
+		// jansson's text may quote the offending input ("invalid token near '...'").
+		char shown[POOL_ESCAPE_LONG];
+		pool_escape_str(shown, sizeof shown, jerr.text);
 		return fail(&ctx, "(document): malformed JSON at line %d, column %d: %s", jerr.line,
-		            jerr.column, jerr.text);
+		            jerr.column, shown);
+	}
 	int status = parse_document(&ctx, root, scenario);
 	json_decref(root);
 	if (status != 0)
@@ -468,37 +482,20 @@ int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario
 
 int pool_scenario_load_file(const char *path, pool_scenario *scenario, char *err,
                             size_t err_size) {
-	parse_ctx ctx = {err, err_size};
+	return pool_scenario_load_file_limit(path, POOL_INPUT_DEFAULT_MAX, scenario, err, err_size);
+}
+
+int pool_scenario_load_file_limit(const char *path, size_t max_bytes, pool_scenario *scenario,
+                                  char *err, size_t err_size) {
 	memset(scenario, 0, sizeof *scenario);
-	bool use_stdin = strcmp(path, "-") == 0;
-	FILE *f = use_stdin ? stdin : fopen(path, "rb");
-	if (!f)
-		return fail(&ctx, "%s: %s", path, strerror(errno));
-	size_t length = 0, capacity = 65536;
-	char *data = malloc(capacity);
-	int status = data ? 0 : fail(&ctx, "%s: out of memory", path);
-	while (status == 0) {
-		if (length == capacity) {
-			char *bigger = realloc(data, capacity * 2);
-			if (!bigger) {
-				status = fail(&ctx, "%s: out of memory", path);
-				break;
-			}
-			data = bigger;
-			capacity *= 2;
-		}
-		size_t n = fread(data + length, 1, capacity - length, f);
-		length += n;
-		if (n == 0) {
-			if (ferror(f)) // e.g. a directory: say why (EISDIR)
-				status = fail(&ctx, "%s: read error: %s", path, strerror(errno));
-			break;
-		}
-	}
-	if (!use_stdin)
-		fclose(f);
-	if (status == 0)
-		status = pool_scenario_parse(data, length, scenario, err, err_size);
+	char *data = NULL;
+	size_t length = 0;
+	char local[8];
+	if (!err || err_size == 0)
+		err = local, err_size = sizeof local;
+	if (pool_read_input(path, max_bytes, &data, &length, err, err_size) != 0)
+		return -1;
+	int status = pool_scenario_parse(data, length, scenario, err, err_size);
 	free(data);
 	return status;
 }

@@ -29,9 +29,15 @@ typedef struct pool_scenario {
 int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
                         size_t err_size);
 
-/// Same, from a file ("-" = standard input).
+/// Same, from a file ("-" = standard input) of at most POOL_INPUT_DEFAULT_MAX bytes (64 MiB;
+/// read_input.h). Files, pipes, FIFOs, devices and standard input are read alike.
 int pool_scenario_load_file(const char *path, pool_scenario *scenario, char *err,
                             size_t err_size);
+
+/// Same with a limit of max_bytes bytes: a longer input is refused with "NAME: input is larger
+/// than the limit of N bytes" (NAME the escaped path or "standard input").
+int pool_scenario_load_file_limit(const char *path, size_t max_bytes, pool_scenario *scenario,
+                                  char *err, size_t err_size);
 
 /// Releases what parse allocated; safe on a zeroed or already-freed scenario.
 void pool_scenario_free(pool_scenario *scenario);
