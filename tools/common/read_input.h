@@ -11,8 +11,9 @@ extern "C" {
 #endif
 
 /// Default limit on the size of a JSON input read by the commands (64 MiB): scenarios are a few
-/// kilobytes (10000 balls, the parser's limit, are about 1 MB); a result sampled every
-/// millisecond for two minutes of a 16-ball break is about 100 MB and needs --max-input.
+/// kilobytes (10000 balls, the parser's limit, are about 1 MB), and a pool-sim result of a
+/// 16-ball break sampled as finely as it can be (20000 grid instants) is under 10 MB. Parsing
+/// takes up to about 20 times the input in memory (jansson, a 60 MiB array of zeros: 1.3 GB).
 #define POOL_INPUT_DEFAULT_MAX ((size_t)64 << 20)
 
 /// Reads all of path ("-" = standard input) into a malloc'd buffer (NUL-terminated, *length
