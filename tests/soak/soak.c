@@ -161,8 +161,8 @@ int main(int argc, char **argv) {
 		if (rep.mask)
 			hs_print_report(stdout, &shot, &rep);
 		else {
-			printf("shot seed=%llu index=%ld class=%s: passed (%d balls, %d events, stop %d)\n",
-			       (unsigned long long)seed, one_shot, hs_class_names[one_class], shot.n, rep.events, (int)rep.stop);
+			printf("shot seed=%llu index=%ld class=%s: passed (%d balls, %d events, stop %s)\n",
+			       (unsigned long long)seed, one_shot, hs_class_names[one_class], shot.n, rep.events, hs_stop_name(rep.stop));
 			if (print_scenario)
 				hs_print_scenario(stdout, &shot);
 		}
