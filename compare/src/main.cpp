@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "isolation.h"
 #include "lcm_publish.h"
 #include "plugin_loader.h"
 #include "reference.h"
@@ -30,12 +31,17 @@ namespace {
 const char kUsage[] =
     "usage: pool-compare [--scenario FILE ...] [--engines libpool,ode,bullet] [--dt 1e-3,1e-4]\n"
     "                    [--out DIR] [--lcm-url URL] [--plugin-dir DIR] [--spread N]\n"
-    "                    [--python PATH] [--no-plots] [--quiet] [--help]\n"
+    "                    [--timeout S] [--in-process] [--python PATH] [--no-plots] [--quiet]\n"
+    "                    [--help]\n"
     "\n"
     "Runs each scenario on each engine plugin at each time step and measures it against the\n"
     "closed form (one ball on the cloth) or libpool's exact result. Writes DIR/results.json,\n"
     "DIR/results.csv, plots (DIR/*.png) and DIR/report.md, and prints the table. What the\n"
-    "engines themselves print goes to DIR/engines.log.\n"
+    "engines themselves print goes to DIR/engines.log. Each run (scenario, engine, step) runs in\n"
+    "a child process of its own: one that crashes, calls exit, hangs past --timeout or gives back\n"
+    "non-finite or miscounted states is an error row (its reason in the error field, e.g.\n"
+    "\"killed by SIGSEGV\", \"exit(3)\", \"timed out after 600 s\") and the others go on.\n"
+    "results.json, results.csv and report.md are rewritten (atomically) after every run.\n"
     "\n"
     "  --scenario FILE  libpool-scenario/1 file; repeat it or list several files after it\n"
     "                   (default: every compare/scenarios/*.json)\n"
@@ -49,12 +55,17 @@ const char kUsage[] =
     "  --spread N       perturbed runs (1 um moves of the lead ball) measuring the spread of\n"
     "                   outcomes in scenarios of 3 or more balls (default 8, 0 = off; the\n"
     "                   default sweep skips them below dt 1e-4, a --dt list does not)\n"
+    "  --timeout S      wall-clock limit of one run (measured run, timing repetitions and\n"
+    "                   perturbed runs together), s; the run is killed past it (default 600,\n"
+    "                   0 = none)\n"
+    "  --in-process     run the plugins inside pool-compare, unprotected (for a debugger)\n"
     "  --python PATH    Python with matplotlib for the plots (default: the repo's .venv)\n"
     "  --no-plots       skip the plots\n"
     "  --quiet          no progress lines\n"
     "\n"
-    "Exit status: 0 done, 2 bad option, scenario or plugin (message on standard error),\n"
-    "1 a run or an output file failed.\n";
+    "Exit status: 0 every run done; 1 some run failed (its error row is in every output, which\n"
+    "are all written; the failed runs are listed on standard error) or an output file could not\n"
+    "be written; 2 bad option, scenario or plugin (message on standard error).\n";
 
 struct Options {
 	std::vector<std::string> scenarios;
@@ -66,6 +77,8 @@ struct Options {
 	std::string lcm_url;
 	std::string plugin_dir;
 	int spread = 8;
+	double timeout = 600.0;
+	bool in_process = false;
 	std::string python;
 	bool plots = true;
 	bool quiet = false;
@@ -198,6 +211,13 @@ int parse_args(int argc, char **argv, Options *o) {
 			if (!value(&v) || !parse_double(v, &n) || n < 0 || n > 1000 || n != static_cast<int>(n))
 				return usage_error("--spread needs a whole number of runs in [0, 1000]");
 			o->spread = static_cast<int>(n);
+		} else if (arg == "--timeout") {
+			double t;
+			if (!value(&v) || !parse_double(v, &t) || t < 0)
+				return usage_error("--timeout needs a time limit in seconds (0 = none)");
+			o->timeout = t;
+		} else if (arg == "--in-process") {
+			o->in_process = true;
 		} else if (arg == "--python") {
 			if (!value(&v) || v.empty())
 				return usage_error("--python needs a path");
@@ -363,6 +383,20 @@ int main(int argc, char **argv) {
 	int status = 0;
 	std::vector<Record> records;
 	EngineLog engine_log(o.out + "/engines.log");
+	// Every finished run is on disk at once: a harness that dies later loses none of them.
+	bool save_failed = false;
+	auto save = [&](const std::vector<std::string> &plots) {
+		fill_consistency(&records);
+		std::string error;
+		if (write_results_json(o.out + "/results.json", records, &error) &&
+		    write_results_csv(o.out + "/results.csv", records, &error) &&
+		    write_report(o.out, records, command_line, plots, &error))
+			return true;
+		if (!save_failed)
+			std::cerr << "pool-compare: " << error << "\n";
+		save_failed = true;
+		return false;
+	};
 	for (const auto &scenario : scenarios) {
 		std::string error;
 		std::unique_ptr<Reference> ref = make_closed_form_reference(*scenario);
@@ -385,15 +419,27 @@ int main(int argc, char **argv) {
 				// 8 x 14 s of CPU for the break alone.
 				const bool spread = plugin.api->event_driven || o.dts_given || dt >= 1e-4;
 				settings.spread_runs = many_balls && spread ? o.spread : 0;
-				const double t0 = cpu_now();
 				Record rec;
 				const std::string title = scenario->name + " / " + plugin.api->name + " / " +
 				                          (plugin.api->event_driven ? std::string("event") : "dt " + fmt_dt(dt));
-				const int lines = engine_log.capture(title, [&] { rec = run_engine(*scenario, *ref, plugin, settings); });
+				const Record blank = blank_record(*scenario, *ref, plugin, settings);
+				auto run = [&] { return run_engine(*scenario, *ref, plugin, settings); };
+				double cpu = kNone;
+				const int lines = engine_log.capture(title, [&] {
+					if (o.in_process) {
+						const double t0 = cpu_now(), w0 = wall_now();
+						rec = run();
+						cpu = cpu_now() - t0;
+						rec.wall_seconds = wall_now() - w0;
+						rec.outcome = rec.error.empty() ? "ok" : "failed";
+					} else {
+						rec = run_isolated(run, blank, o.timeout, &cpu);
+					}
+				});
 				rec.engine_messages = lines;
 				if (!o.quiet)
 					std::cerr << "  " << title << ": " << (rec.error.empty() ? "done" : rec.error) << " ("
-					          << cpu_now() - t0 << " s CPU"
+					          << cpu << " s CPU, " << rec.wall_seconds << " s wall"
 					          << (lines ? ", " + std::to_string(lines) + " engine messages in engines.log" : "")
 					          << ")\n";
 				if (publisher && !publisher->publish(rec, &error)) {
@@ -401,25 +447,31 @@ int main(int argc, char **argv) {
 					status = 1;
 				}
 				records.push_back(std::move(rec));
+				save({});
 			}
 		}
 	}
 
-	fill_consistency(&records);
-	std::string error;
-	if (!write_results_json(o.out + "/results.json", records, &error) ||
-	    !write_results_csv(o.out + "/results.csv", records, &error)) {
-		std::cerr << "pool-compare: " << error << "\n";
+	if (!save({}))
 		return 1;
-	}
 	std::cout << results_table(records, false) << "\n" << accuracy_summary(records, 1e-3, false);
 	const std::vector<std::string> plots = o.plots ? draw_plots(o) : std::vector<std::string>();
-	if (!write_report(o.out, records, command_line, plots, &error)) {
-		std::cerr << "pool-compare: " << error << "\n";
+	if (!save(plots))
 		return 1;
-	}
 	if (!o.quiet)
 		std::cerr << "pool-compare: wrote " << o.out << "/results.json, results.csv, report.md and " << plots.size()
 		          << " plots\n";
+	int failed = 0;
+	for (const Record &r : records)
+		failed += !r.error.empty();
+	if (failed) {
+		std::cerr << "pool-compare: " << failed << " of " << records.size()
+		          << " runs failed (error rows in results.json, results.csv and report.md):\n";
+		for (const Record &r : records)
+			if (!r.error.empty())
+				std::cerr << "  " << r.scenario << " / " << r.engine << " / "
+				          << (r.event_driven ? std::string("event") : "dt " + fmt_dt(r.dt)) << ": " << r.error << "\n";
+		status = 1;
+	}
 	return status;
 }

@@ -22,6 +22,10 @@ struct Record {
 	std::string description;   ///< the plugin's one-line description (what it can't model)
 	std::string reference;     ///< "closed-form" or "libpool"
 	std::string error;         ///< why the run failed ("" when it ran)
+	std::string outcome = "ok"; ///< "ok"; "failed" (the engine reported an error or gave back no
+	                            ///< valid state: error says which); "crashed" (killed by a signal),
+	                            ///< "exited" (called exit), "timed_out" (killed after the time limit)
+	double wall_seconds = kNone; ///< s, wall-clock time of the whole run (timing and spread runs included)
 	bool event_driven = false; ///< dt is then null
 	double dt = kNone;         ///< s
 

@@ -56,7 +56,24 @@ json_t *record_object(const Record &r) {
 	json_object_set_new(o, "event_driven", json_boolean(r.event_driven));
 	json_object_set_new(o, "notes", json_string(r.description.c_str()));
 	json_object_set_new(o, "error", r.error.empty() ? json_null() : json_string(r.error.c_str()));
+	json_object_set_new(o, "outcome", json_string(r.outcome.c_str()));
+	json_object_set_new(o, "wall_seconds", number_or_null(r.wall_seconds));
 	return o;
+}
+
+double get_number(json_t *o, const char *key) {
+	json_t *v = json_object_get(o, key);
+	return json_is_number(v) ? json_number_value(v) : kNone;
+}
+
+long long get_integer(json_t *o, const char *key) {
+	json_t *v = json_object_get(o, key);
+	return json_is_integer(v) ? static_cast<long long>(json_integer_value(v)) : 0;
+}
+
+std::string get_string(json_t *o, const char *key) {
+	json_t *v = json_object_get(o, key);
+	return json_is_string(v) ? json_string_value(v) : "";
 }
 
 const size_t kJsonFlags = JSON_REAL_PRECISION(17);
@@ -211,6 +228,102 @@ std::string record_json(const Record &r) {
 	return s;
 }
 
+std::string record_wire(const Record &r) {
+	json_t *o = record_object(r);
+	json_t *balls = json_array();
+	for (const BallSample &b : r.final_balls) {
+		json_t *row = json_array();
+		json_array_append_new(row, json_integer(b.id));
+		json_array_append_new(row, json_integer(b.state));
+		for (const Eigen::Vector3d *v : {&b.pos, &b.vel, &b.omega})
+			for (int k = 0; k < 3; ++k)
+				json_array_append_new(row, json_real((*v)[k]));
+		json_array_append_new(balls, row);
+	}
+	json_object_set_new(o, "final_balls", balls);
+	char *text = json_dumps(o, JSON_COMPACT | kJsonFlags);
+	json_decref(o);
+	std::string s = text ? text : "";
+	free(text);
+	return s;
+}
+
+bool record_from_wire(const std::string &text, Record *out, std::string *error) {
+	json_error_t parse_error;
+	json_t *o = json_loadb(text.data(), text.size(), 0, &parse_error);
+	if (!json_is_object(o)) {
+		json_decref(o);
+		*error = std::string("unreadable record: ") + parse_error.text;
+		return false;
+	}
+	Record r;
+	r.scenario = get_string(o, "scenario");
+	r.engine = get_string(o, "engine");
+	r.description = get_string(o, "notes");
+	r.reference = get_string(o, "reference");
+	r.error = get_string(o, "error");
+	r.outcome = get_string(o, "outcome");
+	r.event_driven = json_is_true(json_object_get(o, "event_driven"));
+	r.cushions_by_rail = json_is_true(json_object_get(o, "cushions_by_rail"));
+	struct {
+		const char *key;
+		double Record::*field;
+	} numbers[] = {{"dt", &Record::dt},
+	               {"cpu_seconds", &Record::cpu_seconds},
+	               {"cpu_seconds_min", &Record::cpu_seconds_min},
+	               {"setup_cpu_seconds", &Record::setup_cpu_seconds},
+	               {"sim_seconds", &Record::sim_seconds},
+	               {"final_position_error", &Record::final_position_error},
+	               {"event_position_error", &Record::event_position_error},
+	               {"direction_error_deg", &Record::direction_error_deg},
+	               {"energy_error", &Record::energy_error},
+	               {"event_time_error", &Record::event_time_error},
+	               {"first_contact_time_error", &Record::first_contact_time_error},
+	               {"slide_roll_time_error", &Record::slide_roll_time_error},
+	               {"stop_time_error", &Record::stop_time_error},
+	               {"collision_time_error", &Record::collision_time_error},
+	               {"max_penetration", &Record::max_penetration},
+	               {"spread_perturbation", &Record::spread_perturbation},
+	               {"spread_rms", &Record::spread_rms},
+	               {"spread_max", &Record::spread_max},
+	               {"consistency_error", &Record::consistency_error},
+	               {"wall_seconds", &Record::wall_seconds}};
+	for (const auto &n : numbers)
+		r.*n.field = get_number(o, n.key);
+	struct {
+		const char *key;
+		int Record::*field;
+	} integers[] = {{"repetitions", &Record::repetitions},
+	                {"unmatched_events", &Record::unmatched_events},
+	                {"missed_collisions", &Record::missed_collisions},
+	                {"phantom_collisions", &Record::phantom_collisions},
+	                {"simultaneous_contacts", &Record::simultaneous_contacts},
+	                {"collisions_reference", &Record::collisions_reference},
+	                {"collisions_engine", &Record::collisions_engine},
+	                {"pocket_mismatches", &Record::pocket_mismatches},
+	                {"engine_messages", &Record::engine_messages},
+	                {"spread_runs", &Record::spread_runs}};
+	for (const auto &n : integers)
+		r.*n.field = static_cast<int>(get_integer(o, n.key));
+	r.steps = get_integer(o, "steps");
+	size_t i;
+	json_t *row;
+	json_array_foreach(json_object_get(o, "final_balls"), i, row) {
+		BallSample b;
+		b.id = static_cast<int>(json_integer_value(json_array_get(row, 0)));
+		b.state = static_cast<int>(json_integer_value(json_array_get(row, 1)));
+		for (int k = 0; k < 3; ++k) {
+			b.pos[k] = json_number_value(json_array_get(row, 2 + k));
+			b.vel[k] = json_number_value(json_array_get(row, 5 + k));
+			b.omega[k] = json_number_value(json_array_get(row, 8 + k));
+		}
+		r.final_balls.push_back(b);
+	}
+	json_decref(o);
+	*out = std::move(r);
+	return true;
+}
+
 bool write_results_json(const std::string &path, const std::vector<Record> &records, std::string *error) {
 	json_t *list = json_array();
 	for (const Record &r : records)
@@ -283,6 +396,8 @@ std::string results_table(const std::vector<Record> &records, bool markdown) {
 }
 
 void fill_consistency(std::vector<Record> *records) {
+	for (Record &r : *records)
+		r.consistency_error = kNone; // recomputed: a finer step may have been added since
 	for (Record &r : *records) {
 		if (r.event_driven || !r.error.empty() || r.final_balls.empty())
 			continue;
@@ -402,7 +517,9 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 			if (!failures)
 				out << "\n## Runs that failed or are incomplete\n\n";
 			failures = true;
-			out << "- " << r.scenario << " / " << r.engine << " / dt " << fmt(r.dt, "%.0e") << ": " << r.error << "\n";
+			out << "- " << r.scenario << " / " << r.engine << " / "
+			    << (r.event_driven ? std::string("event") : "dt " + fmt(r.dt, "%.0e")) << ": " << r.error
+			    << (r.outcome != "ok" && r.outcome != "failed" ? " (" + r.outcome + ")" : "") << "\n";
 		}
 	if (!plots.empty()) {
 		out << "\n## Plots\n\nLeft of each pair: speed (simulated s per CPU s) against final-position error, one "

@@ -13,6 +13,12 @@ namespace pool_compare {
 /// One record as a compact JSON object (the form results.json and LCM carry).
 std::string record_json(const Record &record);
 
+/// One record with its final states (what a run's process sends back to the harness).
+std::string record_wire(const Record &record);
+
+/// Reads record_wire's text back; false with *error if it is not such a record.
+bool record_from_wire(const std::string &text, Record *record, std::string *error);
+
 /// Writes DIR/results.json; false with *error on I/O failure.
 bool write_results_json(const std::string &path, const std::vector<Record> &records, std::string *error);
 

@@ -3,6 +3,8 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 
 namespace pool_compare {
 
@@ -49,39 +51,72 @@ public:
 		return ref.at_rest ? run_to_rest(max_time, error) : advance(ref.end_time, error);
 	}
 
-	std::vector<BallSample> balls() const {
-		std::vector<pool_engine_ball> raw(64);
-		int n = api_->balls(engine_, raw.data(), static_cast<int>(raw.size()));
-		if (n > static_cast<int>(raw.size())) {
-			raw.resize(static_cast<size_t>(n));
-			n = api_->balls(engine_, raw.data(), n);
+	// The balls of the scenario, checked: a count the plugin did not write (more than the scenario
+	// has, more than it filled in, negative), a ball the scenario lacks or reported twice, or a
+	// non-finite position, velocity or spin is an error, not a state to score.
+	bool balls(const Scenario &scenario, std::vector<BallSample> *out, std::string *error) const {
+		out->clear();
+		const int expected = scenario.parsed.ball_count;
+		std::vector<pool_engine_ball> raw(static_cast<size_t>(std::max(64, expected)), unwritten_ball());
+		const int n = api_->balls(engine_, raw.data(), static_cast<int>(raw.size()));
+		if (n < 0)
+			return fail(error, "balls() returned " + std::to_string(n));
+		if (n > expected)
+			return fail(error, "balls() reported " + std::to_string(n) + " balls, the scenario has " +
+			                       std::to_string(expected));
+		std::vector<int> seen;
+		for (int i = 0; i < n; ++i) {
+			const pool_engine_ball &b = raw[static_cast<size_t>(i)];
+			if (b.id == kUnwritten && b.state == kUnwritten)
+				return fail(error, "balls() returned " + std::to_string(n) + " but wrote only " + std::to_string(i) +
+				                       " balls");
+			if (scenario.index_of(b.id) < 0)
+				return fail(error, "balls() reported ball id " + std::to_string(b.id) + ", not in the scenario");
+			if (std::find(seen.begin(), seen.end(), b.id) != seen.end())
+				return fail(error, "balls() reported ball id " + std::to_string(b.id) + " twice");
+			seen.push_back(b.id);
+			for (int k = 0; k < 3; ++k)
+				if (!std::isfinite(b.pos[k]) || !std::isfinite(b.vel[k]) || !std::isfinite(b.omega[k]))
+					return fail(error, "non-finite state of ball " + std::to_string(b.id) + " (pos " +
+					                       triple(b.pos) + ", vel " + triple(b.vel) + ", omega " + triple(b.omega) + ")");
+			BallSample s;
+			s.id = b.id;
+			s.state = b.state;
+			s.pos = Eigen::Vector3d(b.pos);
+			s.vel = Eigen::Vector3d(b.vel);
+			s.omega = Eigen::Vector3d(b.omega);
+			out->push_back(s);
 		}
-		std::vector<BallSample> out;
-		for (int i = 0; i < std::min(n, static_cast<int>(raw.size())); ++i) {
-			BallSample b;
-			b.id = raw[i].id;
-			b.state = raw[i].state;
-			b.pos = Eigen::Vector3d(raw[i].pos);
-			b.vel = Eigen::Vector3d(raw[i].vel);
-			b.omega = Eigen::Vector3d(raw[i].omega);
-			out.push_back(b);
-		}
-		return out;
+		return true;
 	}
 
-	std::vector<Event> events() const {
-		std::vector<pool_engine_event> raw(256);
+	// Events, checked like the balls: a count it did not write or a non-finite time is an error.
+	bool events(std::vector<Event> *out, std::string *error) const {
+		out->clear();
+		std::vector<pool_engine_event> raw(256, unwritten_event());
 		int n = api_->events(engine_, raw.data(), static_cast<int>(raw.size()));
-		if (n > static_cast<int>(raw.size())) {
-			raw.resize(static_cast<size_t>(n));
-			n = api_->events(engine_, raw.data(), n);
+		if (n > static_cast<int>(raw.size()) && n <= kMaxEvents) {
+			raw.assign(static_cast<size_t>(n), unwritten_event());
+			const int again = api_->events(engine_, raw.data(), n);
+			if (again != n)
+				return fail(error, "events() reported " + std::to_string(n) + " events, then " + std::to_string(again));
 		}
-		n = std::max(0, std::min(n, static_cast<int>(raw.size())));
-		std::vector<Event> out;
-		for (int i = 0; i < n; ++i)
-			out.push_back({raw[i].t, raw[i].type, raw[i].ball_a, raw[i].ball_b});
-		std::stable_sort(out.begin(), out.end(), [](const Event &a, const Event &b) { return a.t < b.t; });
-		return out;
+		if (n < 0)
+			return fail(error, "events() returned " + std::to_string(n));
+		if (n > static_cast<int>(raw.size()))
+			return fail(error, "events() reported " + std::to_string(n) + " events (more than " +
+			                       std::to_string(kMaxEvents) + ")");
+		for (int i = 0; i < n; ++i) {
+			const pool_engine_event &e = raw[static_cast<size_t>(i)];
+			if (e.type == kUnwritten)
+				return fail(error, "events() returned " + std::to_string(n) + " but wrote only " + std::to_string(i) +
+				                       " events");
+			if (!std::isfinite(e.t))
+				return fail(error, "events(): event " + std::to_string(i) + " has a non-finite time");
+			out->push_back({e.t, e.type, e.ball_a, e.ball_b});
+		}
+		std::stable_sort(out->begin(), out->end(), [](const Event &a, const Event &b) { return a.t < b.t; });
+		return true;
 	}
 
 	pool_engine_stats stats() const {
@@ -94,6 +129,30 @@ public:
 	double setup_cpu = 0.0;
 
 private:
+	// What the harness puts in the buffers before a call, to see which entries the plugin wrote.
+	static constexpr int32_t kUnwritten = INT32_MIN;
+	static constexpr int kMaxEvents = 1 << 22;
+	static pool_engine_ball unwritten_ball() {
+		pool_engine_ball b{};
+		b.id = b.state = kUnwritten;
+		return b;
+	}
+	static pool_engine_event unwritten_event() {
+		pool_engine_event e{};
+		e.t = kNone;
+		e.type = kUnwritten;
+		return e;
+	}
+	static bool fail(std::string *error, const std::string &message) {
+		*error = message;
+		return false;
+	}
+	static std::string triple(const double v[3]) {
+		char buf[96];
+		std::snprintf(buf, sizeof buf, "%g %g %g", v[0], v[1], v[2]);
+		return buf;
+	}
+
 	bool check(int r, const char *what, std::string *error) {
 		if (r >= 0)
 			return true;
@@ -121,7 +180,27 @@ double median(std::vector<double> v) {
 	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// A run whose plugin handed back something that is not a state: an error row, at the time reached.
+Record invalid(Record *rec, double t) {
+	char at[64];
+	std::snprintf(at, sizeof at, " at t = %.6g s", t);
+	rec->error += at;
+	return *rec;
+}
+
 } // namespace
+
+Record blank_record(const Scenario &scenario, const Reference &ref, const Plugin &plugin, const RunSettings &settings) {
+	const pool_engine_api *api = plugin.api;
+	Record rec;
+	rec.scenario = scenario.name;
+	rec.engine = api->name ? api->name : "";
+	rec.description = api->description ? api->description : "";
+	rec.reference = ref.kind();
+	rec.event_driven = api->event_driven != 0;
+	rec.dt = rec.event_driven ? kNone : settings.dt;
+	return rec;
+}
 
 double cpu_now() {
 	timespec ts;
@@ -154,13 +233,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 	const pool_engine_api *api = plugin.api;
 	const pool_params &params = scenario.parsed.def.params;
 	const double max_time = scenario.parsed.def.max_time;
-	Record rec;
-	rec.scenario = scenario.name;
-	rec.engine = api->name;
-	rec.description = api->description ? api->description : "";
-	rec.reference = ref.kind();
-	rec.event_driven = api->event_driven != 0;
-	rec.dt = rec.event_driven ? kNone : settings.dt;
+	Record rec = blank_record(scenario, ref, plugin, settings);
 
 	// The measured run: states compared at the sample instants, then the end of the shot. An
 	// engine stops at a step boundary (the first at or after the instant asked for), so each state
@@ -180,11 +253,15 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 			if (t > 0.0 && !run.advance(t, &rec.error))
 				return rec;
 			const double reached = t > 0.0 ? engine_time(run.stats(), t) : 0.0;
-			samples.push_back({reached, run.balls(), ref.state_at(reached)});
+			std::vector<BallSample> balls;
+			if (!run.balls(scenario, &balls, &rec.error))
+				return invalid(&rec, reached);
+			samples.push_back({reached, std::move(balls), ref.state_at(reached)});
 		}
 		if (!run.finish(ref, max_time, &rec.error))
 			return rec;
-		final_balls = run.balls();
+		if (!run.balls(scenario, &final_balls, &rec.error))
+			return invalid(&rec, engine_time(run.stats(), ref.end_time));
 		const pool_engine_stats stats = run.stats();
 		// A shot cut at max_time: the reference where the engine stopped (within a step past
 		// it; the reference knows its states beyond max_time). A shot run to rest: both at rest,
@@ -193,7 +270,9 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 		const std::vector<BallSample> ref_final = ref.state_at(t_end);
 		samples.push_back({ref.at_rest ? std::max(ref.end_time, engine_time(stats, ref.end_time)) : t_end,
 		                   final_balls, ref_final});
-		const std::vector<Event> engine_events = run.events();
+		std::vector<Event> engine_events;
+		if (!run.events(&engine_events, &rec.error))
+			return invalid(&rec, engine_time(stats, ref.end_time));
 
 		StateErrors errors(params, collision_windows(ref.events, engine_events, rec.dt));
 		for (const Sample &sample : samples)
@@ -243,7 +322,11 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 				rec.error = "perturbed run " + std::to_string(k) + ": " + (json.empty() ? "bad scenario" : error);
 				return rec;
 			}
-			const std::vector<BallSample> balls = run.balls();
+			std::vector<BallSample> balls;
+			if (!run.balls(scenario, &balls, &error)) {
+				rec.error = "perturbed run " + std::to_string(k) + ": " + error;
+				return rec;
+			}
 			for (size_t b = 0; b < final_balls.size(); ++b) {
 				double d = std::numeric_limits<double>::infinity();
 				for (const BallSample &s : balls)

@@ -21,6 +21,10 @@ struct RunSettings {
 Record run_engine(const Scenario &scenario, const Reference &reference, const Plugin &plugin,
                   const RunSettings &settings);
 
+/// The record of a run before it ran: scenario, engine, description, reference, dt.
+Record blank_record(const Scenario &scenario, const Reference &reference, const Plugin &plugin,
+                    const RunSettings &settings);
+
 /// Instants (s) at which the states are compared: 0, every reference event, and 30 ms after
 /// each collision; at most max_samples of them, all before end_time.
 std::vector<double> sample_times(const Reference &reference, int max_samples);

@@ -4,13 +4,20 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <signal.h>
+#include <unistd.h>
+
+#include "isolation.h"
 #include "metrics.h"
 #include "plugin_loader.h"
 #include "reference.h"
+#include "results_io.h"
 #include "runner.h"
 #include "scenario_file.h"
 
@@ -281,6 +288,61 @@ void libpool_reference_beyond_max_time() {
 	pool_sim_destroy(sim);
 }
 
+// A run in a child process: its record comes back whole (final states included, for
+// consistency_error); a child that crashes, exits or hangs is a reason, not a lost harness.
+void isolated_runs(const Plugin &libpool) {
+	auto s = load("cut30");
+	std::string error;
+	auto ref = s ? make_libpool_reference(*s, &error) : nullptr;
+	CHECK(ref != nullptr, "cut30 reference: %s", error.c_str());
+	if (!ref)
+		return;
+	RunSettings settings;
+	settings.min_timing_cpu = 0.0;
+	const Record blank = blank_record(*s, *ref, libpool, settings);
+	const Record here = run_engine(*s, *ref, libpool, settings);
+	const std::string wire = record_wire(here);
+	Record back;
+	CHECK(record_from_wire(wire, &back, &error), "%s", error.c_str());
+	CHECK(record_json(back) == record_json(here), "round trip:\n%s\n%s", record_json(back).c_str(),
+	      record_json(here).c_str());
+	CHECK(back.final_balls.size() == here.final_balls.size() && !here.final_balls.empty(), "%zu final balls",
+	      back.final_balls.size());
+	for (size_t i = 0; i < back.final_balls.size() && i < here.final_balls.size(); ++i)
+		CHECK(back.final_balls[i].id == here.final_balls[i].id && back.final_balls[i].pos == here.final_balls[i].pos &&
+		          back.final_balls[i].vel == here.final_balls[i].vel &&
+		          back.final_balls[i].omega == here.final_balls[i].omega,
+		      "final ball %zu differs after the round trip", i);
+
+	const Record there = run_isolated([&] { return run_engine(*s, *ref, libpool, settings); }, blank, 60.0);
+	CHECK(there.error.empty() && there.outcome == "ok", "isolated libpool: %s (%s)", there.error.c_str(),
+	      there.outcome.c_str());
+	CHECK(there.final_position_error == here.final_position_error && there.missed_collisions == here.missed_collisions &&
+	          there.final_balls.size() == here.final_balls.size() && there.wall_seconds > 0.0,
+	      "isolated libpool: error %g vs %g", there.final_position_error, here.final_position_error);
+
+	struct {
+		std::function<Record()> run;
+		const char *error, *outcome;
+	} cases[] = {
+	    {[] { raise(SIGSEGV); return Record(); }, "killed by SIGSEGV", "crashed"},
+	    {[]() -> Record { std::abort(); }, "killed by SIGABRT", "crashed"},
+	    {[]() -> Record { std::exit(3); }, "exit(3)", "exited"},
+	    {[]() -> Record { _exit(0); }, "exit(0)", "exited"},
+	    {[]() -> Record { throw std::runtime_error("boom"); }, "exception: boom", "failed"},
+	    {[]() -> Record { for (;;) pause(); }, "timed out after 0.3 s", "timed_out"},
+	};
+	for (const auto &c : cases) {
+		const double t0 = wall_now();
+		const Record r = run_isolated(c.run, blank, 0.3);
+		const double took = wall_now() - t0;
+		CHECK(r.error == c.error && r.outcome == c.outcome && r.scenario == "cut30" && r.engine == "libpool",
+		      "got '%s' (%s), expected '%s' (%s)", r.error.c_str(), r.outcome.c_str(), c.error, c.outcome);
+		CHECK(took < 2.0 && (r.outcome != "timed_out" || took >= 0.3), "'%s' took %.3g s", c.error, took);
+		std::printf("  isolated run: %s (%.3g s)\n", r.error.c_str(), took);
+	}
+}
+
 int main(int argc, char **argv) {
 	if (argc < 3) {
 		std::fprintf(stderr, "usage: test_compare_engines SCENARIO_DIR PLUGIN_DIR ENGINE...\n");
@@ -300,6 +362,8 @@ int main(int argc, char **argv) {
 			continue;
 		engine_reproduces_slide(plugin);
 		engine_transfers_speed(plugin);
+		if (std::string(plugin.api->name) == "libpool")
+			isolated_runs(plugin);
 	}
 	std::printf("%s (%d failures)\n", failures ? "FAILED" : "passed", failures);
 	return failures ? 1 : 0;

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end tests of pool-compare: the frozen example plugin and libpool run and produce the
-# outputs; bad options, scenarios and plugins are refused with exit status 2 and a clear message.
+# outputs; bad options, scenarios and plugins are refused with exit status 2 and a clear message;
+# a plugin that crashes, exits, hangs or returns bad states (the faulty test plugin) gives error
+# rows while libpool's results stay whole, and a harness killed mid-run leaves its finished rows.
 # usage: test_pool_compare.sh POOL_COMPARE PLUGIN_DIR TEST_PLUGIN_DIR SOURCE_DIR WORK_DIR lcm|nolcm [LCM_PYTHON_DIR]
 set -u
 BIN=$1 PLUGINS=$2 TEST_PLUGINS=$3 SRC=$4 WORK=$5 LCM=$6 LCM_PY=${7:-}
@@ -36,6 +38,8 @@ expect 2 "^pool-compare: --dt" --dt -1e-3
 expect 2 "^pool-compare: --spread" --spread x
 expect 2 "^pool-compare: --scenario needs" --scenario
 expect 2 "^pool-compare: --plugin-dir" --plugin-dir "$WORK/nowhere"
+expect 2 "^pool-compare: --timeout" --timeout soon
+expect 2 "^pool-compare: --timeout" --timeout -1
 
 # Plugins: missing, not a plugin, wrong ABI.
 expect 2 "plugin 'nosuch': no module $PLUGINS/libpool_engine_nosuch.so" --engines nosuch --plugin-dir "$PLUGINS"
@@ -83,7 +87,7 @@ assert abs(got[1].final_position_error - 10.901) < 1e-3
 print("ok: POOL_BENCH carried", len(got), "records")
 PY
 		unshare --net sh -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo &&
-			("$0" "$1/sub.py" "$2" "$1/ready" & while [ ! -e "$1/ready" ]; do sleep 0.1; done; sleep 0.3;
+			("$0" "$1/sub.py" "$2" "$1/ready" & for i in $(seq 200); do [ -e "$1/ready" ] || ! kill -0 $! 2>/dev/null && break; sleep 0.1; done; sleep 0.3;
 			 "$3" --engines libpool,frozen --scenario "$4" --out "$1/lcm2" --no-plots --quiet \
 			   --lcm-url "udpm://239.255.76.67:7667?ttl=0" >/dev/null; wait $!)' \
 			"$PY" "$WORK" "$LCM_PY" "$BIN" "$SCEN/slide.json" || fail "POOL_BENCH subscriber"
@@ -121,6 +125,124 @@ print("ok: results.json has the INTERFACES.md fields and the expected errors")
 PY
 else
 	fail "frozen,libpool run exited $?: $(cat "$WORK/err")"
+fi
+
+# Isolation: every failure of the faulty plugin (one per time step, faulty_plugin.c) next to
+# libpool, in one run with a 1 s limit per run. Exit status 1, every output written, an error row
+# with its reason for each failure, libpool's rows complete and exact.
+FAULTY=$TEST_PLUGINS/libpool_engine_faulty.so
+start=$(date +%s%N)
+"$BIN" --engines libpool,"$FAULTY" --plugin-dir "$PLUGINS" --scenario "$SCEN/slide.json" "$SCEN/cut30.json" \
+	--dt 1e-3,2e-3,3e-3,4e-3,5e-3,6e-3,7e-3,8e-3,9e-3,1e-2 --timeout 1 --out "$WORK/faulty" --no-plots \
+	>"$WORK/faulty.table" 2>"$WORK/faulty.err"
+got=$?
+took_ms=$((($(date +%s%N) - start) / 1000000))
+if [ "$got" -ne 1 ]; then
+	fail "faulty run exited $got, expected 1; stderr: $(cat "$WORK/faulty.err")"
+else
+	echo "ok: faulty run exited 1 in $took_ms ms"
+fi
+# Two hung runs at 1 s each, everything else in well under a second: a hang not killed at the
+# limit would take forever.
+[ "$took_ms" -lt 20000 ] || fail "faulty run took $took_ms ms"
+grep -q "18 of 22 runs failed" "$WORK/faulty.err" || fail "stderr lacks the failure summary: $(cat "$WORK/faulty.err")"
+grep -q "cut30 .*faulty .*4e-03 .*failed: exit(3)" "$WORK/faulty.table" || fail "table lacks the exit(3) row"
+for f in results.json results.csv report.md engines.log; do
+	[ -s "$WORK/faulty/$f" ] || fail "faulty run did not write $f"
+done
+"$PY" - "$WORK/faulty" <<'PY' || fail "faulty results check"
+import csv, json, sys
+d = sys.argv[1]
+records = json.load(open(d + "/results.json"))
+assert len(records) == 22, len(records)
+by = {(r["scenario"], r["engine"], r["dt"]): r for r in records}
+balls = {"slide": 1, "cut30": 2}
+for scen in ("slide", "cut30"):
+    n = balls[scen]
+    lp = by[(scen, "libpool", None)]
+    assert lp["error"] is None and lp["outcome"] == "ok", lp
+    assert lp["final_position_error"] is not None and lp["final_position_error"] < 1e-8, lp
+    assert lp["cpu_seconds"] > 0 and lp["repetitions"] >= 1 and lp["wall_seconds"] > 0, lp
+    assert lp["reference"] == ("closed-form" if scen == "slide" else "libpool"), lp
+    if scen == "cut30":
+        assert lp["missed_collisions"] == 0 and lp["phantom_collisions"] == 0 and lp["collisions_reference"] == 3, lp
+    ok = by[(scen, "faulty", 1e-3)]
+    assert ok["error"] is None and ok["outcome"] == "ok" and ok["final_position_error"] > 1, ok
+    expected = {
+        2e-3: ("crashed", lambda e: e == "killed by SIGSEGV"),
+        3e-3: ("crashed", lambda e: e == "killed by SIGABRT"),
+        4e-3: ("exited", lambda e: e == "exit(3)"),
+        5e-3: ("timed_out", lambda e: e == "timed out after 1 s"),
+        6e-3: ("failed", lambda e: e.startswith("non-finite state of ball 0 (pos nan nan")),
+        7e-3: ("failed", lambda e: e.startswith("non-finite state of ball 0") and "vel inf" in e),
+        8e-3: ("failed", lambda e: e.startswith("balls() reported %d balls, the scenario has %d" % (n + 1, n))),
+        9e-3: ("failed", lambda e: e.startswith("balls() returned %d but wrote only 0 balls" % n)),
+        1e-2: ("failed", lambda e: e.startswith("events() returned 5 but wrote only 0 events")),
+    }
+    for dt, (outcome, check) in expected.items():
+        r = by[(scen, "faulty", dt)]
+        assert r["outcome"] == outcome and r["error"] and check(r["error"]), (dt, r["outcome"], r["error"])
+        # An error row scores nothing: no NaN position is an error of 0.
+        assert r["final_position_error"] is None and r["cpu_seconds"] is None, (dt, r)
+    hung = by[(scen, "faulty", 5e-3)]
+    assert 1.0 <= hung["wall_seconds"] < 3.0, hung["wall_seconds"]  # killed at the limit (slack: a loaded machine)
+rows = list(csv.DictReader(open(d + "/results.csv")))
+assert len(rows) == 22 and sum(1 for r in rows if r["error"]) == 18, len(rows)
+assert {r["outcome"] for r in rows} == {"ok", "failed", "crashed", "exited", "timed_out"}, {r["outcome"] for r in rows}
+report = open(d + "/report.md").read()
+for reason in ("killed by SIGSEGV (crashed)", "killed by SIGABRT (crashed)", "exit(3) (exited)",
+               "timed out after 1 s (timed_out)", "non-finite state", "the scenario has 2"):
+    assert reason in report, reason
+print("ok: 18 error rows with their reasons, libpool's 2 rows whole, the hung runs killed after 1 s")
+PY
+
+# The harness itself killed (SIGKILL) while a run hangs with no time limit: the rows finished
+# before it are on disk, results.json is whole, and the hung run does not outlive the harness.
+POOL_FAULTY_MODE=hang "$BIN" --engines libpool,"$FAULTY" --plugin-dir "$PLUGINS" --scenario "$SCEN/slide.json" \
+	--dt 1e-3 --timeout 0 --out "$WORK/killed" --no-plots --quiet >/dev/null 2>&1 &
+harness=$!
+# The children of a process, from /proc (field 4 of stat, after the command name, is the parent).
+children_of() {
+	local stat
+	for stat in /proc/[0-9]*/stat; do
+		[ "$(sed 's/.*) //' "$stat" 2>/dev/null | cut -d' ' -f2)" = "$1" ] && basename "$(dirname "$stat")"
+	done
+}
+for _ in $(seq 200); do
+	grep -q '"libpool"' "$WORK/killed/results.json" 2>/dev/null && break
+	sleep 0.05
+done
+sleep 0.3
+child=$(children_of "$harness" | head -n1) # the faulty run, hanging
+kill -9 "$harness"
+wait "$harness" 2>/dev/null
+if [ -z "${child:-}" ]; then
+	fail "no run process under the harness"
+else
+	for _ in $(seq 40); do kill -0 "$child" 2>/dev/null || break; sleep 0.05; done
+	if kill -0 "$child" 2>/dev/null; then
+		fail "the hung run $child outlived the harness"
+		kill -9 "$child"
+	fi
+fi
+"$PY" - "$WORK/killed/results.json" <<'PY' || fail "results.json after the harness was killed"
+import json, sys
+records = json.load(open(sys.argv[1]))
+assert [(r["scenario"], r["engine"]) for r in records] == [("slide", "libpool")], records
+assert records[0]["error"] is None and records[0]["final_position_error"] < 1e-8, records[0]
+print("ok: the harness killed mid-run left its finished row in a whole results.json")
+PY
+
+# --in-process: the same results without a child process.
+if "$BIN" --engines libpool --plugin-dir "$PLUGINS" --scenario "$SCEN/slide.json" --in-process \
+	--out "$WORK/inproc" --no-plots --quiet >/dev/null 2>"$WORK/err"; then
+	"$PY" -c "
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert len(r) == 1 and r[0]['outcome'] == 'ok' and r[0]['final_position_error'] < 1e-8, r
+" "$WORK/inproc/results.json" || fail "--in-process results"
+else
+	fail "--in-process run exited $?: $(cat "$WORK/err")"
 fi
 
 [ "$failures" -eq 0 ] && echo "passed" || echo "FAILED: $failures"
