@@ -17,6 +17,11 @@ double pool_collide(pool_ball_state *b1, double R1, double M1, pool_ball_state *
 	                                 pool_v3_cross(n, pool_v3_madd(pool_v3_scale(w1, R1), r2, w2)));
 	const double k = 1.0 + mass_ratio;
 	const double P = (1.0 + N) * M1 * pool_v3_dot(pool_v3_sub(v2, v1), n) / k;
+	// Bodies already separating (or exactly tangent) exchange no impulse: a negative P would
+	// pull them together and could add energy. The caller's prediction said "touching"; the
+	// velocities at the event, rounded differently, may say "leaving" by a hair.
+	if (!(P > 0.0))
+		return 0.0;
 	const double vclen = pool_v3_len(vc);
 	pool_vec3 v1n, w1n;
 	// Sticking when friction can stop the slip during the impulse (s < 0) or there is none.

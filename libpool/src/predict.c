@@ -3,7 +3,9 @@
 
 #include <math.h>
 
-#include "pool/quartic.h"
+#include "collision.h"
+#include "contact.h"
+
 #include "pool/sim.h"
 #include "vec3.h"
 
@@ -37,64 +39,25 @@ static int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double 
 
 double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
 	const double d0 = 2.0 * R;
-	const double dd = pool_v3_dot(dp, dp);
-	if (!(T >= 0.0))
+	const double dd = pool_v3_dot(dp, dp), dist = sqrt(dd);
+	if (!(T >= 0.0) || !(dist > 0.0))
+		return INFINITY; // coincident centres have no normal (placement refuses them)
+	pool_contact_gap g;
+	g.gap = dist - d0;
+	if (g.gap > POOL_TOUCH_TOLERANCE && (T == 0.0 || !may_touch(dp, dv, da, R, T)))
 		return INFINITY;
-	if (dd <= (d0 + POOL_TOUCH_TOLERANCE) * (d0 + POOL_TOUCH_TOLERANCE)) {
-		// Touching (a frozen rack, or just after an event): collide now only if approaching.
-		const double dpdv = pool_v3_dot(dp, dv);
-		if (dpdv < -POOL_APPROACH_EPS * sqrt(dd))
-			return 0.0;
-		// ... or if not separating while cloth friction pushes them together (|p|^2 has a negative
-		// second-order term, a2 = dv.dv + 2 da.dp = |dv_t|^2 + 2R a_n): the root at 0 has no
-		// approach speed, and when rounding left them overlapping by a hair there is no later
-		// approaching root either, so they would pass through each other. The threshold keeps
-		// a_n below -1e-9 m/s^2, enough for the event's separation floor (sim.c) to show in the
-		// velocities.
-		if (dpdv <= 0.0 && pool_v3_dot(dv, dv) + 2.0 * pool_v3_dot(da, dp) < -d0 * POOL_APPROACH_EPS)
-			return 0.0;
-	}
-	if (T == 0.0 || !may_touch(dp, dv, da, R, T))
-		return INFINITY;
-	const double c[5] = {
-		pool_v3_dot(da, da),
-		2.0 * pool_v3_dot(da, dv),
-		pool_v3_dot(dv, dv) + 2.0 * pool_v3_dot(da, dp),
-		2.0 * pool_v3_dot(dv, dp),
-		pool_v3_dot(dp, dp) - d0 * d0,
-	};
-	// Roots in ascending order from the window solver; a root where the balls separate (a touching
-	// pair moving apart, or a graze) is stepped over.
-	const double hi = isfinite(T) ? T : 1e12;
-	double lo = 0.0, t;
-	for (int it = 0; it < 4 && pool_quartic_smallest_root_in(c, lo, hi, &t) == 0; ++it) {
-		// Approaching at the root: p . p' < 0 with |p| = 2R.
-		pool_vec3 p = pool_v3_madd(pool_v3_madd(dp, t, dv), t * t, da);
-		pool_vec3 dpdt = pool_v3_madd(dv, 2.0 * t, da);
-		if (pool_v3_dot(p, dpdt) < -POOL_APPROACH_EPS * d0)
-			return t;
-		lo = t + 1e-13 * (1.0 + t);
-		if (!(lo <= hi))
-			break;
-	}
-	// Insurance against a root the solver lost: apart now, overlapping at T means a crossing.
-	const double fT = pool_v3_dot(pool_v3_madd(pool_v3_madd(dp, T, dv), T * T, da),
-	                              pool_v3_madd(pool_v3_madd(dp, T, dv), T * T, da)) - d0 * d0;
-	if (c[4] > 0.0 && fT < 0.0 && isfinite(T)) {
-		double lo = 0.0, hi = T;
-		for (int it = 0; it < 200 && hi - lo > 0.0; ++it) {
-			double mid = 0.5 * (lo + hi);
-			if (mid <= lo || mid >= hi)
-				break;
-			pool_vec3 p = pool_v3_madd(pool_v3_madd(dp, mid, dv), mid * mid, da);
-			if (pool_v3_dot(p, p) - d0 * d0 > 0.0)
-				lo = mid;
-			else
-				hi = mid;
-		}
-		return lo;
-	}
-	return INFINITY;
+	// f = |p|^2 - (2R)^2 with p(tau) = dp + dv tau + da tau^2.
+	const double pv = pool_v3_dot(dp, dv), vv = pool_v3_dot(dv, dv);
+	g.f[0] = dd - d0 * d0;
+	g.f[1] = 2.0 * pv;
+	g.f[2] = vv + 2.0 * pool_v3_dot(da, dp);
+	g.f[3] = 2.0 * pool_v3_dot(da, dv);
+	g.f[4] = pool_v3_dot(da, da);
+	// Rate and curvature of the distance |p|: |p|' = p.p'/|p|, |p|'' = (p'.p' + p.p'')/|p| - (p.p')^2/|p|^3
+	// (the tangential part of dv curves a touching pair apart).
+	g.speed = -pv / dist;
+	g.accel = -((vv + 2.0 * pool_v3_dot(dp, da)) / dist - pv * pv / (dd * dist));
+	return pool_contact_next(&g, T);
 }
 
 pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along) {
@@ -125,51 +88,23 @@ pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double a
 	}
 }
 
-// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 reaches `target` moving in direction
-// `sign` (+1: increasing) faster than POOL_APPROACH_EPS; INFINITY when never.
+// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `target` coming from the side
+// where sign (target - x) > 0 (sign +1: increasing towards it); INFINITY when never.
 static double line_contact(double x0, double v, double a, double target, double sign, double T) {
-	double gap = sign * (target - x0); // > 0 while short of the line
-	if (gap <= POOL_TOUCH_TOLERANCE && sign * v > POOL_APPROACH_EPS)
-		return 0.0;
-	// Touching, not leaving, and pushed into the line (a ball frozen to a rail that slides along
-	// it with a curve towards it): the root at 0 has no approach speed yet, so the loop below would
-	// skip it and the ball would pass through the nose. Contact now; the event's separation floor
-	// (sim.c) sends it off.
-	if (gap <= POOL_TOUCH_TOLERANCE && sign * v >= 0.0 && sign * a > 0.0)
-		return 0.0;
-	// 0.5 a t^2 + v t + (x0 - target) = 0
-	double A = 0.5 * a, B = v, C = x0 - target;
-	double r[2];
-	int n = 0;
-	if (A == 0.0) {
-		if (B != 0.0)
-			r[n++] = -C / B;
-	} else {
-		double disc = B * B - 4.0 * A * C;
-		if (disc >= 0.0) {
-			double q = -0.5 * (B + copysign(sqrt(disc), B));
-			if (q != 0.0) {
-				r[n++] = q / A;
-				r[n++] = C / q;
-			} else {
-				r[n++] = 0.0;
-			}
-		}
-	}
-	if (n == 2 && r[1] < r[0]) {
-		double t = r[0];
-		r[0] = r[1];
-		r[1] = t;
-	}
-	for (int i = 0; i < n; ++i)
-		if (r[i] >= 0.0 && r[i] <= T && sign * (v + a * r[i]) > POOL_APPROACH_EPS)
-			return r[i];
-	return INFINITY;
+	pool_contact_gap g;
+	g.gap = sign * (target - x0);
+	g.speed = sign * v;
+	g.accel = sign * a;
+	g.f[0] = g.gap;
+	g.f[1] = -g.speed;
+	g.f[2] = -0.5 * g.accel;
+	g.f[3] = g.f[4] = 0.0;
+	return pool_contact_next(&g, T);
 }
 
 double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
                             pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket) {
-	const double dc = 0.0 + sqrt(R * R - (table->cushion_height - R) * (table->cushion_height - R));
+	const double dc = pool_cushion_contact_distance(R, table->cushion_height);
 	double best = INFINITY;
 	pool_rail best_rail = POOL_RAIL_NONE;
 	const double tx[4] = {dc, table->width - dc, dc, table->length - dc};

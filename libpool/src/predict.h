@@ -2,22 +2,15 @@
 #ifndef POOL_PREDICT_H
 #define POOL_PREDICT_H
 
+#include "contact.h"
 #include "pool/ball.h"
 #include "pool/event.h"
 #include "pool/table.h"
 
-/// Normal approach speed (m/s) below which touching bodies are not treated as colliding.
-/// Every accepted collision reverses the normal relative velocity (times the restitution), so
-/// a pair cannot be found colliding again at the same instant unless it is approaching faster
-/// than this: this is what ends chains of simultaneous contacts (frozen racks). Rounding of
-/// velocities is ~1e-15 m/s; 1e-9 m/s over a whole shot moves a ball by nanometres.
-#define POOL_APPROACH_EPS 1e-9
-
 /// Earliest tau in [0, T] at which two balls of radius R come into contact while approaching,
 /// with relative motion p(tau) = dp + dv tau + da tau^2 (da = half the difference of the
-/// accelerations); INFINITY when none. Touching balls (gap <= POOL_TOUCH_TOLERANCE) that
-/// approach faster than POOL_APPROACH_EPS give 0; touching balls that separate give a later
-/// contact or none.
+/// accelerations); INFINITY when none. Touching balls (gap <= POOL_TOUCH_TOLERANCE) follow the
+/// rules of contact.h: 0 when they collide now, else their next meeting.
 double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T);
 
 /// Earliest tau in [0, T] at which a ball on the cloth (state s, centre acceleration acc)

@@ -417,10 +417,18 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		return pool_error_set(error, POOL_ERR_NON_FINITE, "balls[%d].vel: must be finite", idx);
 	if (!pool_v3_finite(ball->omega))
 		return pool_error_set(error, POOL_ERR_NON_FINITE, "balls[%d].omega: must be finite", idx);
+	const double R = sim->def.params.ball_radius;
+	if (pool_v3_len(ball->vel) > POOL_MAX_SPEED)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "balls[%d].vel: speed above the %g m/s limit (POOL_MAX_SPEED)",
+		                      idx, POOL_MAX_SPEED);
+	if (pool_v3_len(ball->omega) * R > POOL_MAX_SPEED)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "balls[%d].omega: spin surface speed |omega| R above the %g m/s limit (POOL_MAX_SPEED)", idx,
+		                      POOL_MAX_SPEED);
 	int dup = find_ball(sim, ball->id);
 	if (dup >= 0)
 		return pool_error_set(error, POOL_ERR_DUPLICATE_ID, "balls[%d].id: duplicate id %d", idx, (int)ball->id);
-	const double R = sim->def.params.ball_radius, L = sim->def.table.length, W = sim->def.table.width;
+	const double L = sim->def.table.length, W = sim->def.table.width;
 	const double tol = POOL_TOUCH_TOLERANCE;
 	if (fabs(ball->pos.z - R) > tol)
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
@@ -519,7 +527,9 @@ static int separation_floor(const pool_params *p, pool_ball_state *s1, pool_ball
 	const double an = pool_v3_dot(a, n), vn = pool_v3_dot(v, n);
 	if (!(an < 0.0))
 		return 0;
-	const double floor = -an * POOL_CONTACT_MIN_INTERVAL * 0.5;
+	// At least POOL_SEPARATION_MIN, or the next prediction would find the same contact "now"
+	// again (contact.h) when the pull is weaker than 2 POOL_SEPARATION_MIN / the interval.
+	const double floor = fmax(-an * POOL_CONTACT_MIN_INTERVAL * 0.5, POOL_SEPARATION_MIN);
 	if (vn >= floor)
 		return 0;
 	const double dv = floor - vn;
@@ -532,6 +542,12 @@ static int separation_floor(const pool_params *p, pool_ball_state *s1, pool_ball
 	}
 	pool_motion_derive(p, s1);
 	return 1;
+}
+
+double pool_floor_energy_bound(const pool_params *p) {
+	const double an = 2.0 * fmax(p->mu_slide, p->mu_roll) * p->g;
+	const double f = fmax(an * POOL_CONTACT_MIN_INTERVAL * 0.5, POOL_SEPARATION_MIN);
+	return 0.25 * p->ball_mass * f * f;
 }
 
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.

@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "error.h"
+#include "pool/ball.h"
 #include "vec3.h"
 
 pool_result pool_strike_velocities(const pool_params *params, const pool_strike *strike,
@@ -18,6 +19,9 @@ pool_result pool_strike_velocities(const pool_params *params, const pool_strike 
 			return pool_error_set(error, POOL_ERR_NON_FINITE, "%s: must be finite", names[i]);
 	if (!(strike->speed > 0.0))
 		return pool_error_set(error, POOL_ERR_BAD_STRIKE, "strike.speed: must be > 0");
+	if (strike->speed > POOL_MAX_SPEED)
+		return pool_error_set(error, POOL_ERR_BAD_STRIKE, "strike.speed: %g m/s is above the %g m/s limit (POOL_MAX_SPEED)",
+		                      strike->speed, POOL_MAX_SPEED);
 	if (!(strike->theta >= 0.0 && strike->theta < 1.57079632679489661923))
 		return pool_error_set(error, POOL_ERR_BAD_STRIKE, "strike.theta: must be in [0, pi/2) rad");
 	const double c2 = R * R - strike->a * strike->a - strike->b * strike->b;
@@ -39,6 +43,11 @@ pool_result pool_strike_velocities(const pool_params *params, const pool_strike 
 	      isfinite(w.z)))
 		return pool_error_set(error, POOL_ERR_NON_FINITE,
 		                      "strike.speed: the ball's velocity or spin is not finite with these params");
+	// A light ball under a heavy cue leaves at up to twice the cue speed: the ball's own limit.
+	if (pool_v3_len(v) > POOL_MAX_SPEED || pool_v3_len(w) * R > POOL_MAX_SPEED)
+		return pool_error_set(error, POOL_ERR_BAD_STRIKE,
+		                      "strike.speed: the ball would leave faster than %g m/s (POOL_MAX_SPEED) with these params",
+		                      POOL_MAX_SPEED);
 	*vel = v;
 	*omega = w;
 	return pool_error_ok(error);

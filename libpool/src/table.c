@@ -3,6 +3,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdbool.h>
 #include <string.h>
 
 #include "error.h"
@@ -89,6 +90,12 @@ pool_result pool_table_def_validate(const pool_table_def *t, pool_error *error) 
 	return pool_error_ok(error);
 }
 
+// 0.4 m R^2 and 2 m R are normal numbers (neither underflows nor overflows).
+static bool normal_mass_radius(double m, double R) {
+	const double inertia = 0.4 * m * R * R, mass_radius = 2.0 * m * R;
+	return inertia >= DBL_MIN && inertia <= DBL_MAX && mass_radius >= DBL_MIN && mass_radius <= DBL_MAX;
+}
+
 pool_result pool_params_validate(const pool_params *p, pool_error *error) {
 	pool_result r;
 	if (!p)
@@ -109,12 +116,17 @@ pool_result pool_params_validate(const pool_params *p, pool_error *error) {
 		return r;
 	// The strike and collision laws divide by m R^2 and 2 m R: when those underflow (a subnormal
 	// mass such as 4.9e-324 kg) or overflow, spins come out NaN (found by test_scenario_fuzz).
-	const double inertia = 0.4 * p->ball_mass * p->ball_radius * p->ball_radius;
-	const double mass_radius = 2.0 * p->ball_mass * p->ball_radius;
-	if (!(inertia >= DBL_MIN && inertia <= DBL_MAX && mass_radius >= DBL_MIN && mass_radius <= DBL_MAX))
+	if (!normal_mass_radius(p->ball_mass, p->ball_radius)) {
+		// Name the factor out of range on its own: if the radius fails even with the default
+		// mass, the radius; else the mass (alone or with the radius).
+		if (!normal_mass_radius(pool_default_params().ball_mass, p->ball_radius))
+			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+			                      "params.ball_radius: %g m is out of range (0.4 m R^2 or 2 m R is not a normal number)",
+			                      p->ball_radius);
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
 		                      "params.ball_mass: %g kg with ball_radius %g m is out of range "
-		                      "(0.4 m R^2 is not a normal number)",
+		                      "(0.4 m R^2 or 2 m R is not a normal number)",
 		                      p->ball_mass, p->ball_radius);
+	}
 	return pool_error_ok(error);
 }

@@ -58,12 +58,89 @@ static void test_touching(void **state) {
 	assert_true(pool_predict_ball_ball(dp, pool_v3(1e-3, 0, 0), zero, R, 1.0) == 0.0);
 	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(-1e-3, 0, 0), zero, R, 1.0)));
 	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(0, 1.0, 0), zero, R, 1.0)));
-	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(1e-12, 0, 0), zero, R, 1.0))); // below POOL_APPROACH_EPS
+	// Approaching slower than POOL_APPROACH_EPS with nothing to stop the drift: the overlap would
+	// grow without bound, so this is a contact now too (before, it was ignored: interpenetration).
+	assert_true(pool_predict_ball_ball(dp, pool_v3(1e-12, 0, 0), zero, R, 1.0) == 0.0);
+	// ... but pushed apart at 1 m/s^2 the same drift overlaps by v^2 / 2a = 5e-25 m at most and
+	// ends by itself: no contact.
+	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(1e-12, 0, 0), pool_v3(-0.5, 0, 0), R, 1.0)));
 	// Within the touch tolerance (a rack's rounding), still now.
 	assert_true(pool_predict_ball_ball(pool_v3(-2 * R - 5e-10, 0, 0), pool_v3(1, 0, 0), zero, R, 1.0) == 0.0);
 	// Separating now but pulled back later by the relative acceleration: a later contact.
 	double t = pool_predict_ball_ball(dp, pool_v3(-0.1, 0, 0), pool_v3(0.5, 0, 0), R, 10.0);
 	near_rel(t, 0.2, 1e-9);
+}
+
+// Issue 9, class 2: a touching pair separating slowly while friction drives it back together.
+// The gap is x(t) = -v t + a t^2 / 2 (v the separation speed, a the pull): it returns at
+// t = 2 v / a whatever the size of v, and when v is within rounding (|v| <= POOL_APPROACH_EPS)
+// the pair is in contact now. Before the fix, v = 1e-10 gave no contact at all and the balls
+// went 4 cm into each other.
+static void test_touching_slow_separation_pulled_back(void **state) {
+	(void)state;
+	const double a = 2.0; // m/s^2 relative pull (da = a/2 along the normal)
+	const pool_vec3 da = pool_v3(0.5 * a, 0, 0);
+	const double offsets[] = {0.0, 5e-10, -5e-10, -1e-15, 1e-15}; // gap at the start, m
+	for (size_t k = 0; k < sizeof offsets / sizeof offsets[0]; ++k) {
+		const pool_vec3 dp = pool_v3(-2 * R - offsets[k], 0, 0); // body 1 left of body 2
+		const double slow[] = {1e-10, 2.2e-16, 0.0, -1e-10, 1e-9};
+		for (size_t i = 0; i < sizeof slow / sizeof slow[0]; ++i)
+			assert_true(pool_predict_ball_ball(dp, pool_v3(-slow[i], 0, 0), da, R, 1.0) == 0.0);
+		// Leaving faster than rounding: they meet again at 2 v / a (the start gap is taken as zero).
+		const double fast[] = {2e-9, 1e-6, 1e-3, 0.1};
+		for (size_t i = 0; i < sizeof fast / sizeof fast[0]; ++i)
+			near_rel(pool_predict_ball_ball(dp, pool_v3(-fast[i], 0, 0), da, R, 10.0), 2 * fast[i] / a, 1e-6);
+	}
+	// Interpenetrating beyond the tolerance (a bug elsewhere, or a user's rounding) is still a
+	// contact: approaching, however slowly, collides now.
+	assert_true(pool_predict_ball_ball(pool_v3(-2 * R + 1e-6, 0, 0), pool_v3(1e-6, 0, 0), pool_v3(0, 0, 0), R, 1.0) == 0.0);
+}
+
+// Curvature decides for a touching pair with tangential relative speed u: the distance's
+// acceleration is a_pull - u^2 / (2R). Pulled harder than that: contact now; softer: they part.
+static void test_touching_curvature(void **state) {
+	(void)state;
+	const double u = 1.0, centripetal = u * u / (2 * R); // 17.5 m/s^2
+	const pool_vec3 dp = pool_v3(0, -2 * R, 0), dv = pool_v3(u, 0, 0);
+	assert_true(pool_predict_ball_ball(dp, dv, pool_v3(0, 0.5 * 1.1 * centripetal, 0), R, 1.0) == 0.0);
+	assert_true(isinf(pool_predict_ball_ball(dp, dv, pool_v3(0, 0.5 * 0.9 * centripetal, 0), R, 1e-3)));
+}
+
+// Issue 9, class 1: the cushion version. A ball touching the south rail's contact line
+// (y = dc), leaving it at speed v while its slip pulls it back at a: back at the line at
+// t = 2 v / a, or now when v is within rounding; and a ball drifting to a rail with no friction
+// (mu_slide = 0, class 4) reaches it at d / v however slow v is.
+static void test_cushion_slow_separation_pulled_back(void **state) {
+	(void)state;
+	pool_table_def t = pool_default_table_def();
+	const double h = t.cushion_height, dc = sqrt(R * R - (h - R) * (h - R));
+	pool_rail rail;
+	pool_pocket pocket;
+	pool_ball_state s = {0};
+	const double a = 1.5;
+	const double offsets[] = {0.0, 5e-10, -5e-10, -2.2e-16};
+	for (size_t k = 0; k < sizeof offsets / sizeof offsets[0]; ++k) {
+		s.pos = pool_v3(1.0, dc + offsets[k], R);
+		const double slow[] = {1e-10, 2.2e-16, 0.0, -1e-10};
+		for (size_t i = 0; i < sizeof slow / sizeof slow[0]; ++i) {
+			s.vel = pool_v3(-3.0, slow[i], 0.0);
+			assert_true(pool_predict_cushion(&t, R, &s, pool_v3(0.5, -a, 0), 0.1, &rail, &pocket) == 0.0);
+			assert_int_equal(rail, POOL_RAIL_SOUTH);
+		}
+		const double fast[] = {2e-9, 1e-6, 1e-3};
+		for (size_t i = 0; i < sizeof fast / sizeof fast[0]; ++i) {
+			s.vel = pool_v3(-3.0, fast[i], 0.0);
+			near_rel(pool_predict_cushion(&t, R, &s, pool_v3(0.5, -a, 0), 0.1, &rail, &pocket), 2 * fast[i] / a, 1e-6);
+			assert_int_equal(rail, POOL_RAIL_SOUTH);
+		}
+	}
+	// No friction, 1e-9 m/s towards the north rail from 0.6 m: the contact is d / v later.
+	s.pos = pool_v3(1.0, 0.6, R);
+	s.vel = pool_v3(0.0, 1e-9, 0.0);
+	near_rel(pool_predict_cushion(&t, R, &s, pool_v3(0, 0, 0), INFINITY, &rail, &pocket), (t.width - dc - 0.6) / 1e-9, 1e-12);
+	assert_int_equal(rail, POOL_RAIL_NORTH);
+	s.vel = pool_v3(0.0, 1e-13, 0.0);
+	near_rel(pool_predict_cushion(&t, R, &s, pool_v3(0, 0, 0), INFINITY, &rail, &pocket), (t.width - dc - 0.6) / 1e-13, 1e-12);
 }
 
 // Cushions: a rolling ball meets the north nose when W - y = sqrt(R^2 - (h - R)^2); pockets by
@@ -92,8 +169,11 @@ static void test_cushion_and_pockets(void **state) {
 	s.vel = pool_v3(0.5, 0.0, 0.0);
 	assert_true(pool_predict_cushion(&t, R, &s, pool_v3(0, 0, 0), 10.0, &rail, &pocket) == 0.0);
 	assert_int_equal(rail, POOL_RAIL_EAST);
+	// Leaving at 0.5 m/s: the west rail's line is (L - 2 dc) / 0.5 later, outside a 0.5 s window.
 	s.vel = pool_v3(-0.5, 0.0, 0.0);
-	assert_true(pool_predict_cushion(&t, R, &s, pool_v3(0, 0, 0), 0.5, &rail, &pocket) > 0.5 * (t.length - 2 * dc));
+	assert_true(isinf(pool_predict_cushion(&t, R, &s, pool_v3(0, 0, 0), 0.5, &rail, &pocket)));
+	near_rel(pool_predict_cushion(&t, R, &s, pool_v3(0, 0, 0), 10.0, &rail, &pocket), (t.length - 2 * dc) / 0.5, 1e-12);
+	assert_int_equal(rail, POOL_RAIL_WEST);
 	// Mouth intervals.
 	const double L = t.length, W = t.width, c = t.corner_mouth / sqrt(2.0);
 	assert_int_equal(pool_pocket_at(&t, POOL_RAIL_SOUTH, L / 2 + 0.5 * t.side_mouth - 1e-6), POOL_POCKET_S);
@@ -156,6 +236,9 @@ int main(void) {
 		cmocka_unit_test(test_decelerating),
 		cmocka_unit_test(test_touching),
 		cmocka_unit_test(test_touching_pushed_together),
+		cmocka_unit_test(test_touching_slow_separation_pulled_back),
+		cmocka_unit_test(test_touching_curvature),
+		cmocka_unit_test(test_cushion_slow_separation_pulled_back),
 		cmocka_unit_test(test_cushion_and_pockets),
 		cmocka_unit_test(test_cushion_touching_pushed_in),
 	};

@@ -28,6 +28,13 @@ POOL_API const char *pool_motion_name(pool_motion motion);
 /// Parses a name from pool_motion_name; returns -1 when unknown.
 POOL_API int pool_motion_from_name(const char *name);
 
+/// m/s, the fastest motion libpool simulates: a ball's speed, its spin's surface speed |w| R and
+/// the cue speed of a strike above it are refused (POOL_ERR_INVALID_ARGUMENT / _BAD_STRIKE). It
+/// is seven times the fastest measured break cue (about 14 m/s); the library's tolerances (a
+/// nanometre of overlap, 1e-9 m/s of approach) are sized for table-scale motion, and absurd
+/// speeds (1e200 m/s) would overflow the contact polynomials into nonsense.
+#define POOL_MAX_SPEED 100.0
+
 /// One ball: identity, motion state and kinematics (world frame).
 typedef struct pool_ball_state {
 	int32_t id;         ///< user-chosen, unique in a simulation

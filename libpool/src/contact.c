@@ -1,0 +1,101 @@
+// When two bodies meet next, from their gap polynomial (the rules are in contact.h).
+#include "contact.h"
+
+#include <math.h>
+
+#include "pool/quartic.h"
+#include "pool/sim.h"
+
+/// Relative step past a root where the bodies separate before the next root is searched: the
+/// solver's roots are accurate to a few ulps, so 1e-13 (1 + t) cannot find the same root again,
+/// and a second root that close to it is the other half of a graze (overlap < 1e-20 m).
+#define CONTACT_ROOT_STEP 1e-13
+
+int pool_contact_now(double gap, double speed, double accel) {
+	if (speed > POOL_APPROACH_EPS)
+		return 1; // approaching
+	if (speed < -POOL_APPROACH_EPS)
+		return 0; // leaving at a speed rounding cannot fake: the polynomial says when they return
+	// The speed's sign is within rounding: pressed together means in contact now, ...
+	if (accel > 0.0)
+		return 1;
+	// ... and so does drifting in when nothing stops the drift before the bodies interpenetrate
+	// by more than the tolerance (a drift at speed v against a separating acceleration a goes
+	// v^2 / 2|a| deeper before it turns).
+	if (!(speed > 0.0))
+		return 0;
+	return accel == 0.0 || gap - speed * speed / (-2.0 * accel) < -POOL_TOUCH_TOLERANCE;
+}
+
+// p(t) for p[0] + p[1] t + ... + p[deg] t^deg (Horner).
+static double eval(const double *p, int deg, double t) {
+	double v = p[deg];
+	for (int k = deg - 1; k >= 0; --k)
+		v = v * t + p[k];
+	return v;
+}
+
+// p'(t).
+static double eval_slope(const double *p, int deg, double t) {
+	double v = deg * p[deg];
+	for (int k = deg - 1; k >= 1; --k)
+		v = v * t + k * p[k];
+	return deg >= 1 ? v : 0.0;
+}
+
+// First root in [0, T] of the polynomial p (ascending, degree <= 4) at which it falls (p' < 0:
+// the gap closes), INFINITY when none. p has the sign of the gap for t > 0.
+static double first_falling_root(const double *p, int deg, double T) {
+	double c[5] = {0.0, 0.0, 0.0, 0.0, 0.0}; // the solver's order: highest degree first
+	for (int k = 0; k <= deg; ++k)
+		c[4 - k] = p[k];
+	if (!isfinite(T)) {
+		// An endless window (both segments endless: no friction, or an infinite max_time) is
+		// outside the window solver's scaling: take every real root.
+		double roots[4];
+		const int n = pool_quartic_real_roots(c, roots);
+		for (int i = 0; i < n; ++i)
+			if (roots[i] >= 0.0 && eval_slope(p, deg, roots[i]) < 0.0)
+				return roots[i];
+		return INFINITY;
+	}
+	double lo = 0.0, t;
+	for (int it = 0; it <= deg && pool_quartic_smallest_root_in(c, lo, T, &t) == 0; ++it) {
+		if (eval_slope(p, deg, t) < 0.0)
+			return t;
+		lo = t + CONTACT_ROOT_STEP * (1.0 + t);
+		if (!(lo <= T))
+			break;
+	}
+	// Insurance against a root the solver lost: not closing now, interpenetrating at the end of
+	// the window means a crossing in between; bisect for the last instant still apart.
+	if (p[0] >= 0.0 && eval(p, deg, T) < 0.0) {
+		double a = 0.0, b = T;
+		for (int i = 0; i < 200; ++i) {
+			double mid = 0.5 * (a + b);
+			if (mid <= a || mid >= b)
+				break;
+			if (eval(p, deg, mid) >= 0.0)
+				a = mid;
+			else
+				b = mid;
+		}
+		return a;
+	}
+	return INFINITY;
+}
+
+double pool_contact_next(const pool_contact_gap *g, double T) {
+	if (!(T >= 0.0))
+		return INFINITY;
+	if (g->gap > POOL_TOUCH_TOLERANCE)
+		return T > 0.0 ? first_falling_root(g->f, 4, T) : INFINITY;
+	if (pool_contact_now(g->gap, g->speed, g->accel))
+		return 0.0;
+	// Touching, not colliding now: the gap is exactly zero, f = tau q(tau), and for tau > 0 q
+	// has the sign of the gap (a root of q where it falls is one where f falls: f' = tau q').
+	// A pair creeping together too slowly to matter (q(0) < 0) first separates: that root of q
+	// rises and is stepped over.
+	const double q[4] = {g->f[1], g->f[2], g->f[3], g->f[4]};
+	return first_falling_root(q, 3, T);
+}

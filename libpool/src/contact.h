@@ -1,0 +1,56 @@
+// When two bodies meet next, from their gap polynomial (PHYSICS.md "Predicting events").
+//
+// Every contact prediction reduces to one question about a gap function f(tau), a polynomial
+// of degree <= 4 in the time tau from now that is positive while the bodies are apart, zero at
+// contact and negative when they interpenetrate: |p(tau)|^2 - (2R)^2 for two balls, the
+// distance of the centre to a cushion's contact line for a ball and a rail (and, with airborne
+// motion and LINK, the height above the cloth and the pairs of a cluster). The answer depends
+// on the sign and size of nothing but the gap, its rate and its curvature now, so every kind of
+// contact inherits the same treatment of touching bodies:
+//
+// - Apart (gap > POOL_TOUCH_TOLERANCE): the first root of f where the bodies approach (f' < 0),
+//   however slowly. A root where they separate (a graze) is stepped over.
+// - Touching or interpenetrating (gap <= POOL_TOUCH_TOLERANCE, of either sign): the contact is
+//   live. The bodies collide now when they approach faster than POOL_APPROACH_EPS; when the
+//   normal speed is smaller than that, in either direction, rounding cannot tell its sign and
+//   the normal acceleration decides: pressed together means now (a pair leaving at 1e-10 m/s
+//   while friction pulls it back has no later root the solver could see: it would pass
+//   through), and so does a slow drift in that nothing stops before the bodies interpenetrate
+//   by more than the tolerance.
+//   Otherwise the gap is taken as exactly zero (f(0) = 0, so f = tau q(tau)) and the next
+//   meeting is the first root of q where the bodies approach: the return of a pair that leaves
+//   and is pulled back, found exactly however small the separation in between.
+// In every case the bodies never pass through each other between events: a crossing the root
+// solver missed is caught by f's sign at the end of the window and bisected.
+#ifndef POOL_CONTACT_H
+#define POOL_CONTACT_H
+
+/// Normal approach speed (m/s) that counts as approaching for bodies already in contact.
+/// Every accepted collision reverses the normal relative velocity (times the restitution), so
+/// a pair cannot be found colliding again at the same instant unless it approaches faster than
+/// this: this is what ends chains of simultaneous contacts (frozen racks). Below it the sign of
+/// the speed is within the rounding of velocities (~1e-15 m/s) and accumulated positions, and
+/// the acceleration decides. 1e-9 m/s over a whole shot moves a ball by nanometres.
+#define POOL_APPROACH_EPS 1e-9
+
+/// Separation speed (m/s) that every contact event leaves at least when the bodies are pressed
+/// together (see sim.c, separation floor): above the band POOL_APPROACH_EPS where acceleration
+/// decides, so the same contact is not found again at the same instant.
+#define POOL_SEPARATION_MIN (2.0 * POOL_APPROACH_EPS)
+
+/// A contact's gap polynomial and its state now.
+typedef struct pool_contact_gap {
+	double f[5];  ///< f(tau) = f[0] + f[1] tau + ... + f[4] tau^4: > 0 apart, 0 touching
+	double gap;   ///< m, distance between the surfaces now (< 0: interpenetrating)
+	double speed; ///< m/s, normal approach speed now (> 0: approaching)
+	double accel; ///< m/s^2, normal approach acceleration now (> 0: pressed together)
+} pool_contact_gap;
+
+/// Earliest tau in [0, T] at which the bodies meet while approaching (rules above); INFINITY
+/// when none.
+double pool_contact_next(const pool_contact_gap *g, double T);
+
+/// 1 when bodies in contact (gap <= POOL_TOUCH_TOLERANCE) collide now by the rules above.
+int pool_contact_now(double gap, double speed, double accel);
+
+#endif
