@@ -131,6 +131,8 @@ def main():
     subs = [lc.subscribe("POOL_SHOT", on_shot)]
     if not args.json:
         subs.append(lc.subscribe("POOL_EVENT", on_event))
+    # liblcm keeps at most 30 received messages per subscription until handle() takes them and
+    # drops the rest silently; pool-sim publishes a shot's events in one burst.
     for sub in subs:
         sub.set_queue_capacity(10000)
     # Tests wait for this line before publishing.

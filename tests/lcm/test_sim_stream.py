@@ -22,11 +22,12 @@ for name in ("short", "cut", "bank", "break"):
                             args.types_dir, "--json", "--count", "1", "--timeout", "20"],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     u.wait_for_line(sub, "subscribed")
-    listeners = len(u.udp_sockets())
     csub = subprocess.Popen([os.path.join(args.bin_dir, "pool-lcm-subscribe"), "--lcm-url", u.URL,
                              "--count", "1", "--timeout", "20"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    u.wait_for_listeners(listeners + 1)  # the C subscriber prints nothing until messages arrive
+    # Its socket exists before it has joined the group and registered its handlers: wait for the
+    # line it prints once subscribed (waiting for the socket lost the first events now and then).
+    u.wait_for_line(csub, "subscribed")
     live = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT"])
     out = os.path.join(args.work_dir, name + ".lcm-run.json")
     subprocess.run([pool_sim, scenario, "--lcm-url", u.URL, "-o", out], check=True, timeout=60,

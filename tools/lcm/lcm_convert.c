@@ -267,13 +267,17 @@ static uint32_t pool_lcm_be32(const unsigned char *p)
 	return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
 }
 
-int pool_lcm_request_decode(const void *data, size_t size, pool_lcm_shot_request_t *out,
-                            char *err, size_t err_size)
+static uint64_t pool_lcm_be64(const unsigned char *p)
+{
+	return ((uint64_t)pool_lcm_be32(p) << 32) | pool_lcm_be32(p + 4);
+}
+
+int pool_lcm_request_peek(const void *data, size_t size, int64_t *request_id, char *err,
+                          size_t err_size)
 {
 	// Layout: 8-byte fingerprint, int64 utime, int64 request_id, int32 length (with NUL), bytes.
 	enum { header = 8 + 8 + 8 + 4 };
 	const unsigned char *bytes = data;
-	memset(out, 0, sizeof *out);
 	if (data == NULL || size < header || size > (size_t)0x7fffffff) {
 		snprintf(err, err_size, "undecodable shot_request_t: %zu bytes", size);
 		return -1;
@@ -283,6 +287,23 @@ int pool_lcm_request_decode(const void *data, size_t size, pool_lcm_shot_request
 		snprintf(err, err_size,
 		         "undecodable shot_request_t: scenario_json length %u in a %zu-byte message",
 		         length, size);
+		return -1;
+	}
+	if (pool_lcm_be64(bytes) != (uint64_t)__pool_lcm_shot_request_t_get_hash()) {
+		snprintf(err, err_size, "undecodable shot_request_t: wrong type fingerprint");
+		return -1;
+	}
+	if (request_id != NULL) {
+		*request_id = (int64_t)pool_lcm_be64(bytes + 16);
+	}
+	return 0;
+}
+
+int pool_lcm_request_decode(const void *data, size_t size, pool_lcm_shot_request_t *out,
+                            char *err, size_t err_size)
+{
+	memset(out, 0, sizeof *out);
+	if (pool_lcm_request_peek(data, size, NULL, err, err_size) != 0) {
 		return -1;
 	}
 	if (pool_lcm_shot_request_t_decode(data, 0, (int)size, out) < 0) {

@@ -83,6 +83,12 @@ int pool_lcm_table_state_fill(const pool_sim *sim, double t, int64_t shot_id, in
 /// Frees what pool_lcm_table_state_fill allocated; safe on a zeroed message.
 void pool_lcm_table_state_release(pool_lcm_table_state_t *msg);
 
+/// Checks a shot_request_t datagram's framing and type fingerprint, as pool_lcm_request_decode
+/// does, without copying the scenario: sets *request_id (when not NULL) and returns 0, or returns
+/// -1 with a message in err. Lets pool-shot-server refuse a large request without decoding it.
+int pool_lcm_request_peek(const void *data, size_t size, int64_t *request_id, char *err,
+                          size_t err_size);
+
 /// Decodes a shot_request_t datagram after checking its framing by hand (lcm-gen's decoder trusts
 /// the string length and terminator). Returns 0, or -1 with a message in err; on success release
 /// with pool_lcm_shot_request_t_decode_cleanup.

@@ -3,21 +3,46 @@
 // pool_scenario_setup), so a steady stream of shots does not allocate per request; after a shot
 // that grew it past RETAIN_EVENTS events it is freed, so one huge shot does not pin its memory.
 //
+// Two threads. The main one only receives: it takes each request off liblcm's queue as soon as
+// liblcm has it, and either appends it to the server's own queue or, when that queue is full
+// (--max-queue-requests, --max-queue-bytes), answers at once with an error starting "server
+// busy:". So requests wait in a queue bounded in count and bytes, not in liblcm's (whose capacity,
+// LCM_QUEUE_CAPACITY or --max-queue-requests if larger, is a backstop for bursts that arrive faster
+// than the main thread can sort them). The worker thread simulates the queued requests in
+// order and publishes the answers (liblcm functions are thread-safe).
+//
 // Every request has a budget: at most --max-balls balls, at most --max-events events (capping the
-// scenario's own options.max_events) and --max-shot-seconds of wall time. The shot is stepped in
-// chunks of STEP_CHUNK events; between chunks the server checks the clock and the stop flag, so a
-// request over budget is answered with an error, and SIGINT/SIGTERM abandon a running shot at
-// once. An answer whose encoding would exceed --max-answer-bytes (LCM over UDP multicast loses
-// messages larger than the receivers' socket buffers) is replaced by one carrying the final
-// states and an error saying so.
+// scenario's own options.max_events) and --max-shot-seconds of wall time counted from the moment
+// liblcm received it, so time spent queued is part of it: a request whose budget ran out while it
+// waited is answered with an error without being simulated, and one taken up late gets only what
+// is left. The shot is stepped in chunks of STEP_CHUNK events; between chunks the worker checks
+// the clock and the stop flag, so a request over budget is answered with an error, and SIGINT/
+// SIGTERM abandon a running shot at once (the queued requests are answered with an error too). An
+// answer whose encoding would exceed --max-answer-bytes (LCM over UDP multicast loses messages
+// larger than the receivers' socket buffers) is replaced by one carrying the final states and an
+// error saying so.
+//
+// Memory: a request's scenario is freed once it is answered, and (glibc) allocations of
+// MMAP_THRESHOLD bytes or more, liblcm's reassembly buffers for large datagrams included, are
+// mapped and unmapped one by one instead of being kept in malloc's heaps, so the resident size goes
+// back down after a burst of large requests.
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <inttypes.h>
 #include <limits.h>
+#include <poll.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <lcm/lcm.h>
 
@@ -33,6 +58,11 @@
 #define DEFAULT_MAX_EVENTS 1000000L
 #define DEFAULT_MAX_BALLS 2000L
 #define DEFAULT_MAX_ANSWER_BYTES 4194304L
+#define DEFAULT_MAX_QUEUE_REQUESTS 4096L
+#define DEFAULT_MAX_QUEUE_BYTES 67108864L
+/// Least capacity of liblcm's own queue of requests the main thread has not taken yet (it is
+/// --max-queue-requests when that is larger).
+#define LCM_QUEUE_CAPACITY 1024L
 /// Smallest accepted --max-answer-bytes: room for an error answer.
 #define MIN_MAX_ANSWER_BYTES 512L
 /// Events stepped between two looks at the clock and the stop flag (a step of a 2000-ball shot
@@ -40,49 +70,92 @@
 #define STEP_CHUNK 16
 /// A simulation that held more events than this is freed after the shot instead of reused.
 #define RETAIN_EVENTS 100000
+/// Allocations from this size up get their own mapping (glibc mallopt M_MMAP_THRESHOLD), given
+/// back to the system when freed. Fixing it also stops glibc from raising it after each free of a
+/// mapped block, which is what kept hundreds of megabytes after a burst of 4 MB requests.
+#define MMAP_THRESHOLD (256 * 1024)
 
 static const char usage_text[] =
 	"usage: pool-shot-server [--lcm-url URL] [--max-requests N] [--max-shot-seconds S]\n"
-	"                        [--max-events N] [--max-balls N] [--max-answer-bytes N] [--help]\n"
+	"                        [--max-events N] [--max-balls N] [--max-answer-bytes N]\n"
+	"                        [--max-queue-requests N] [--max-queue-bytes N] [--help]\n"
 	"\n"
 	"Answers every pool_lcm.shot_request_t on POOL_SHOT_REQUEST (a libpool-scenario/1 document)\n"
 	"with a pool_lcm.shot_t on POOL_SHOT carrying the same request_id: every event and the final\n"
 	"state of every ball, or `error` naming the offending field of a bad scenario or the limit a\n"
-	"request exceeded. Undecodable datagrams are logged on standard error and skipped. Stops on\n"
-	"SIGINT or SIGTERM (abandoning a shot in progress) and reports how many requests it answered.\n"
+	"request exceeded. Requests wait their turn in a queue bounded by --max-queue-requests and\n"
+	"--max-queue-bytes; one that does not fit is answered at once with an error starting\n"
+	"\"server busy:\" (send it again later). Undecodable datagrams are logged on standard error and\n"
+	"skipped. Stops on SIGINT or SIGTERM (abandoning a shot in progress and answering the queued\n"
+	"requests with an error) and reports what it answered, refused and dropped.\n"
 	"\n"
 	"  --lcm-url URL           LCM provider (default $LCM_DEFAULT_URL, else\n"
 	"                          udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608)\n"
-	"  --max-requests N        exit after answering N requests (0 = serve until a signal)\n"
-	"  --max-shot-seconds S    wall time one request may take, parsing included (default 10)\n"
+	"  --max-requests N        exit after answering N requests, busy answers included\n"
+	"                          (0 = serve until a signal)\n"
+	"  --max-shot-seconds S    wall time one request may take from its arrival to its answer,\n"
+	"                          time queued and parsing included (default 10); a request that\n"
+	"                          waited longer is answered with an error, not simulated\n"
 	"  --max-events N          events one shot may take; caps the scenario's options.max_events\n"
 	"                          (default 1000000)\n"
 	"  --max-balls N           balls one scenario may hold (default 2000)\n"
 	"  --max-answer-bytes N    largest answer sent; a larger one is replaced by the final states\n"
 	"                          and an error (default 4194304 = 4 MiB)\n"
+	"  --max-queue-requests N  requests that may wait while one is simulated (default 4096)\n"
+	"  --max-queue-bytes N     encoded bytes of the waiting requests together (default 67108864\n"
+	"                          = 64 MiB); a single larger request is refused with an error\n"
 	"  -h, --help              show this help\n";
 
-/// The per-request budget (command-line options).
+/// The per-request budget and the queue's bounds (command-line options).
 typedef struct server_limits {
 	double max_shot_seconds;
 	long max_events;
 	long max_balls;
 	long max_answer_bytes;
+	long max_queue_requests;
+	long max_queue_bytes;
 } server_limits;
 
-/// What the handler needs between requests.
+/// A request waiting in the server's queue.
+typedef struct queued_request {
+	struct queued_request *next;
+	pool_lcm_shot_request_t request; // decoded; the scenario is freed once it is answered
+	long bytes;                      // its encoded size, counted against --max-queue-bytes
+	double arrived;                  // monotonic s when liblcm received it
+} queued_request;
+
+/// What both threads share. `lock` guards the queue and every counter written by both threads
+/// (answered, errors, publish_failures, last_shot_id); the counters only the worker writes
+/// (over_budget ... abandoned_queued) are read by the main thread after joining it.
 typedef struct server_state {
 	lcm_t *lcm;
 	server_limits limits;
-	pool_sim *sim;        // reused for every request
+	long max_requests;    // --max-requests
+	pthread_mutex_t lock;
+	pthread_cond_t wake;  // signalled when a request is queued or the server stops
+	queued_request *head; // oldest
+	queued_request *tail;
+	long queued;          // requests in the queue (reserved ones included)
+	long queued_bytes;
+	long peak_queued;     // largest queue seen, requests and bytes
+	long peak_queued_bytes;
+	atomic_bool stopping; // the main loop ended: the worker abandons what it has and returns
+	int wake_pipe[2];     // the worker writes a byte when --max-requests answers are reached
+	pool_sim *sim;        // reused for every request (worker only)
 	int64_t last_shot_id; // shot ids strictly increase even within one microsecond
 	long answered;        // shot_t published (errors included)
-	long errors;          // answers carrying an error (the three counts below included)
-	long over_budget;     // requests over --max-shot-seconds, --max-events or --max-balls
-	long oversized;       // answers over --max-answer-bytes, replaced by the final states
-	long abandoned;       // shots given up because a stop signal arrived
-	long undecodable;     // datagrams that were not a shot_request_t
+	long errors;          // answers carrying an error (all the refusals below included)
 	long publish_failures;
+	long undecodable;     // datagrams that were not a shot_request_t (main thread only)
+	long busy;            // refused with "server busy:" because the queue was full (main only)
+	long too_large;       // requests alone larger than --max-queue-bytes (main only)
+	long over_budget;     // requests over --max-shot-seconds (while running), --max-events or
+	                      // --max-balls (worker only; the report adds too_large)
+	long trim_bytes;      // request bytes answered since the last malloc_trim (worker only)
+	long expired;         // budget spent in the queue: answered with an error, not simulated
+	long oversized;       // answers over --max-answer-bytes, replaced by the final states
+	long abandoned;       // running shots given up because a stop signal arrived
+	long abandoned_queued; // queued requests answered with an error because the server stopped
 } server_state;
 
 static double monotonic_s(void)
@@ -95,30 +168,50 @@ static double monotonic_s(void)
 static int64_t next_shot_id(server_state *s)
 {
 	int64_t now = pool_lcm_utime_now();
+	pthread_mutex_lock(&s->lock);
 	s->last_shot_id = now > s->last_shot_id ? now : s->last_shot_id + 1;
-	return s->last_shot_id;
+	int64_t id = s->last_shot_id;
+	pthread_mutex_unlock(&s->lock);
+	return id;
 }
 
-static void publish_shot(server_state *s, const pool_lcm_shot_t *shot)
+static bool stop_now(server_state *s)
 {
-	if (pool_lcm_shot_t_publish(s->lcm, POOL_LCM_CHANNEL_SHOT, shot) != 0) {
-		s->publish_failures++;
+	return pool_lcm_stop_requested() || atomic_load(&s->stopping);
+}
+
+static void publish_shot(server_state *s, const pool_lcm_shot_t *shot, bool is_error)
+{
+	bool failed = pool_lcm_shot_t_publish(s->lcm, POOL_LCM_CHANNEL_SHOT, shot) != 0;
+	if (failed) {
 		fprintf(stderr, "pool-shot-server: could not publish the answer to request %lld\n",
 		        (long long)shot->request_id);
 	}
+	pthread_mutex_lock(&s->lock);
+	s->publish_failures += failed;
+	s->errors += is_error;
 	s->answered++;
+	bool reached = s->max_requests > 0 && s->answered == s->max_requests;
+	pthread_mutex_unlock(&s->lock);
+	if (reached) {
+		// Wake the main loop so it stops now rather than at its next poll timeout.
+		ssize_t w = write(s->wake_pipe[1], "", 1);
+		(void)w;
+	}
 }
 
 static void answer_error(server_state *s, int64_t shot_id, int64_t request_id, const char *message)
 {
 	pool_lcm_shot_t shot;
-	s->errors++;
 	if (pool_lcm_shot_fill_error(shot_id, request_id, pool_lcm_utime_now(), message, &shot) != 0) {
 		fprintf(stderr, "pool-shot-server: out of memory answering request %lld\n",
 		        (long long)request_id);
+		pthread_mutex_lock(&s->lock);
+		s->errors++;
+		pthread_mutex_unlock(&s->lock);
 		return;
 	}
-	publish_shot(s, &shot);
+	publish_shot(s, &shot, true);
 	pool_lcm_shot_release(&shot);
 }
 
@@ -131,8 +224,9 @@ typedef enum run_outcome {
 } run_outcome;
 
 // Steps the shot in chunks of STEP_CHUNK events, looking at the stop flag and the clock between
-// chunks. started: monotonic time the request was taken up.
-static run_outcome run_budgeted(server_state *s, double started, char *err, size_t err_size)
+// chunks. deadline: monotonic time the answer is due (arrival + --max-shot-seconds).
+static run_outcome run_budgeted(server_state *s, double deadline, double queued_s, char *err,
+                                size_t err_size)
 {
 	for (;;) {
 		for (int k = 0; k < STEP_CHUNK; ++k) {
@@ -146,16 +240,17 @@ static run_outcome run_budgeted(server_state *s, double started, char *err, size
 				return RUN_DONE;
 			}
 		}
-		if (pool_lcm_stop_requested()) {
+		if (stop_now(s)) {
 			return RUN_STOPPED;
 		}
-		if (monotonic_s() - started > s->limits.max_shot_seconds) {
+		if (monotonic_s() > deadline) {
 			int count = 0;
 			pool_sim_events(s->sim, &count);
 			snprintf(err, err_size,
 			         "shot exceeded the server's budget of %g s (--max-shot-seconds): stopped "
-			         "after %d events at t = %.6g s",
-			         s->limits.max_shot_seconds, count, pool_sim_time(s->sim));
+			         "after %d events at t = %.6g s (the budget counts from the request's "
+			         "arrival; %.3f s of it spent queued)",
+			         s->limits.max_shot_seconds, count, pool_sim_time(s->sim), queued_s);
 			return RUN_OVER_TIME;
 		}
 	}
@@ -179,7 +274,7 @@ static void answer_shot(server_state *s, int64_t shot_id, int64_t request_id)
 			answer_error(s, shot_id, request_id, "out of memory converting the shot");
 			return;
 		}
-		publish_shot(s, &shot);
+		publish_shot(s, &shot, false);
 		pool_lcm_shot_release(&shot);
 		return;
 	}
@@ -208,8 +303,7 @@ static void answer_shot(server_state *s, int64_t shot_id, int64_t request_id)
 	}
 	fprintf(stderr, "pool-shot-server: request %lld: %s\n", (long long)request_id, message);
 	s->oversized++;
-	s->errors++;
-	publish_shot(s, &shot);
+	publish_shot(s, &shot, true);
 	pool_lcm_shot_release(&shot);
 }
 
@@ -226,15 +320,35 @@ static void trim_sim(server_state *s)
 	}
 }
 
-static void answer_request(server_state *s, const pool_lcm_shot_request_t *request)
+// The error of a request whose budget ran out before it was simulated (or while it was parsed).
+static void answer_expired(server_state *s, int64_t shot_id, const queued_request *q, double now,
+                           const char *when)
+{
+	char err[400];
+	snprintf(err, sizeof err,
+	         "request expired in the server's queue: it waited %.3f s, and the server's budget of "
+	         "%g s (--max-shot-seconds), counted from its arrival, ran out %s; not simulated",
+	         now - q->arrived, s->limits.max_shot_seconds, when);
+	s->expired++;
+	answer_error(s, shot_id, q->request.request_id, err);
+}
+
+static void answer_request(server_state *s, const queued_request *q)
 {
 	double started = monotonic_s();
+	double deadline = q->arrived + s->limits.max_shot_seconds;
+	double queued_s = started - q->arrived;
 	int64_t shot_id = next_shot_id(s);
+	int64_t request_id = q->request.request_id;
+	if (started > deadline) {
+		answer_expired(s, shot_id, q, started, "before its turn came");
+		return;
+	}
 	char err[512];
 	pool_scenario scenario;
-	const char *json = request->scenario_json;
+	const char *json = q->request.scenario_json;
 	if (pool_scenario_parse(json, strlen(json), &scenario, err, sizeof err) != 0) {
-		answer_error(s, shot_id, request->request_id, err);
+		answer_error(s, shot_id, request_id, err);
 		return;
 	}
 	if (scenario.ball_count > s->limits.max_balls) {
@@ -242,7 +356,7 @@ static void answer_request(server_state *s, const pool_lcm_shot_request_t *reque
 		         "(--max-balls)", scenario.ball_count, s->limits.max_balls);
 		pool_scenario_free(&scenario);
 		s->over_budget++;
-		answer_error(s, shot_id, request->request_id, err);
+		answer_error(s, shot_id, request_id, err);
 		return;
 	}
 	// The scenario may ask for fewer events than the server allows, never more.
@@ -254,11 +368,10 @@ static void answer_request(server_state *s, const pool_lcm_shot_request_t *reque
 	pool_result r = pool_scenario_setup(&scenario, &s->sim, &perr);
 	pool_scenario_free(&scenario);
 	if (r != POOL_OK) {
-		answer_error(s, shot_id, request->request_id,
-		             perr.message[0] ? perr.message : pool_result_str(r));
+		answer_error(s, shot_id, request_id, perr.message[0] ? perr.message : pool_result_str(r));
 		return;
 	}
-	run_outcome outcome = run_budgeted(s, started, err, sizeof err);
+	run_outcome outcome = run_budgeted(s, deadline, queued_s, err, sizeof err);
 	if (outcome == RUN_DONE && capped && pool_sim_stop_reason(s->sim) == POOL_STOP_MAX_EVENTS) {
 		snprintf(err, sizeof err,
 		         "shot exceeded the server's budget of %ld events (--max-events) at t = %.6g s",
@@ -267,41 +380,177 @@ static void answer_request(server_state *s, const pool_lcm_shot_request_t *reque
 	}
 	switch (outcome) {
 	case RUN_DONE:
-		answer_shot(s, shot_id, request->request_id);
+		answer_shot(s, shot_id, request_id);
 		break;
 	case RUN_FAILED:
-		answer_error(s, shot_id, request->request_id, err);
+		answer_error(s, shot_id, request_id, err);
 		break;
 	case RUN_OVER_TIME:
-		fprintf(stderr, "pool-shot-server: request %lld: %s\n", (long long)request->request_id,
-		        err);
+		fprintf(stderr, "pool-shot-server: request %lld: %s\n", (long long)request_id, err);
 		s->over_budget++;
-		answer_error(s, shot_id, request->request_id, err);
+		answer_error(s, shot_id, request_id, err);
 		break;
 	case RUN_STOPPED:
 		s->abandoned++;
-		answer_error(s, shot_id, request->request_id,
-		             "shot abandoned: the server is stopping (SIGINT/SIGTERM)");
+		answer_error(s, shot_id, request_id, pool_lcm_stop_requested()
+		             ? "shot abandoned: the server is stopping (SIGINT/SIGTERM)"
+		             : "shot abandoned: the server is stopping (--max-requests answered)");
 		break;
 	}
 	trim_sim(s);
 }
 
+static void free_queued(queued_request *q)
+{
+	pool_lcm_shot_request_t_decode_cleanup(&q->request);
+	free(q);
+}
+
+// The worker thread: answers the queued requests in arrival order until the server stops, then
+// answers what is still queued with an error.
+static void *worker_main(void *user)
+{
+	server_state *s = user;
+	for (;;) {
+		pthread_mutex_lock(&s->lock);
+		while (s->head == NULL && !stop_now(s)) {
+			// A timeout so a signal (which sets a flag, nothing else) is seen within 200 ms.
+			struct timespec until;
+			clock_gettime(CLOCK_REALTIME, &until);
+			until.tv_nsec += 200000000L;
+			if (until.tv_nsec >= 1000000000L) {
+				until.tv_sec++;
+				until.tv_nsec -= 1000000000L;
+			}
+			pthread_cond_timedwait(&s->wake, &s->lock, &until);
+		}
+		queued_request *q = s->head;
+		if (q != NULL) {
+			s->head = q->next;
+			if (s->head == NULL) {
+				s->tail = NULL;
+			}
+			s->queued--;
+			s->queued_bytes -= q->bytes;
+		}
+		bool idle = s->head == NULL;
+		pthread_mutex_unlock(&s->lock);
+		if (q == NULL) {
+			return NULL; // stopping, nothing left
+		}
+		if (stop_now(s)) {
+			s->abandoned_queued++;
+			answer_error(s, next_shot_id(s), q->request.request_id, pool_lcm_stop_requested()
+			             ? "request abandoned before its turn: the server is stopping "
+			               "(SIGINT/SIGTERM)"
+			             : "request abandoned before its turn: the server is stopping "
+			               "(--max-requests answered)");
+		} else {
+			answer_request(s, q);
+		}
+		s->trim_bytes += q->bytes;
+		free_queued(q);
+#ifdef __GLIBC__
+		// Once idle after at least a megabyte of requests, give back what the scenarios' many
+		// small allocations left in malloc's heaps (rare for a stream of small requests).
+		if (idle && s->trim_bytes >= (1L << 20)) {
+			malloc_trim(0);
+			s->trim_bytes = 0;
+		}
+#else
+		(void)idle;
+#endif
+	}
+}
+
+// Monotonic time at which liblcm received a datagram (recv_utime, wall clock; the kernel's
+// timestamp of its last fragment), so time in liblcm's queue counts against the budget too.
+static double arrival_time(int64_t recv_utime)
+{
+	double now = monotonic_s();
+	double age = (double)(pool_lcm_utime_now() - recv_utime) * 1e-6;
+	if (!(age >= 0.0) || age > 3600.0) {
+		age = 0.0; // the wall clock moved, or no timestamp: take now
+	}
+	return now - age;
+}
+
 // Raw handler rather than lcm-gen's typed one: a datagram that does not decode must be counted
-// and logged, and its framing checked before lcm-gen's decoder trusts it.
+// and logged, and its framing checked before lcm-gen's decoder trusts it; a request refused as
+// busy is answered from its request_id alone, without copying its scenario.
 static void on_request(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
 	(void)channel;
 	server_state *s = user;
-	pool_lcm_shot_request_t request;
-	char err[256];
-	if (pool_lcm_request_decode(rbuf->data, rbuf->data_size, &request, err, sizeof err) != 0) {
+	char err[400];
+	int64_t request_id = 0;
+	if (pool_lcm_request_peek(rbuf->data, rbuf->data_size, &request_id, err, sizeof err) != 0) {
 		s->undecodable++;
 		fprintf(stderr, "pool-shot-server: %s (skipped)\n", err);
 		return;
 	}
-	answer_request(s, &request);
-	pool_lcm_shot_request_t_decode_cleanup(&request);
+	double arrived = arrival_time(rbuf->recv_utime);
+	long bytes = (long)rbuf->data_size;
+	const server_limits *lim = &s->limits;
+	if (bytes > lim->max_queue_bytes) {
+		snprintf(err, sizeof err, "request of %ld bytes is larger than the server's queue "
+		         "(--max-queue-bytes %ld); not simulated", bytes, lim->max_queue_bytes);
+		s->too_large++;
+		answer_error(s, next_shot_id(s), request_id, err);
+		return;
+	}
+	pthread_mutex_lock(&s->lock);
+	long queued = s->queued, queued_bytes = s->queued_bytes;
+	bool fits = queued < lim->max_queue_requests && queued_bytes + bytes <= lim->max_queue_bytes;
+	if (fits) {
+		// Reserve the room now; the request is appended once decoded.
+		s->queued++;
+		s->queued_bytes += bytes;
+		if (s->queued > s->peak_queued) {
+			s->peak_queued = s->queued;
+		}
+		if (s->queued_bytes > s->peak_queued_bytes) {
+			s->peak_queued_bytes = s->queued_bytes;
+		}
+	}
+	pthread_mutex_unlock(&s->lock);
+	if (!fits) {
+		snprintf(err, sizeof err,
+		         "server busy: %ld requests (%ld bytes) already queued, the limit is %ld requests "
+		         "(--max-queue-requests) and %ld bytes (--max-queue-bytes); not simulated, send "
+		         "it again later", queued, queued_bytes, lim->max_queue_requests,
+		         lim->max_queue_bytes);
+		s->busy++;
+		answer_error(s, next_shot_id(s), request_id, err);
+		return;
+	}
+	queued_request *q = calloc(1, sizeof *q);
+	if (q == NULL || pool_lcm_request_decode(rbuf->data, rbuf->data_size, &q->request, err,
+	                                         sizeof err) != 0) {
+		free(q);
+		pthread_mutex_lock(&s->lock);
+		s->queued--;
+		s->queued_bytes -= bytes;
+		pthread_mutex_unlock(&s->lock);
+		answer_error(s, next_shot_id(s), request_id, "out of memory queueing the request");
+		return;
+	}
+	q->bytes = bytes;
+	q->arrived = arrived;
+	pthread_mutex_lock(&s->lock);
+	if (s->tail != NULL) {
+		s->tail->next = q;
+	} else {
+		s->head = q;
+	}
+	s->tail = q;
+	pthread_cond_signal(&s->wake);
+	pthread_mutex_unlock(&s->lock);
+}
+
+static bool parse_size_option(const char *value, long min, long *out)
+{
+	return pool_cli_parse_count(value, out) && *out >= min && *out <= INT_MAX;
 }
 
 int main(int argc, char **argv)
@@ -309,7 +558,8 @@ int main(int argc, char **argv)
 	const char *url = NULL;
 	long max_requests = 0;
 	server_limits limits = {DEFAULT_MAX_SHOT_SECONDS, DEFAULT_MAX_EVENTS, DEFAULT_MAX_BALLS,
-	                        DEFAULT_MAX_ANSWER_BYTES};
+	                        DEFAULT_MAX_ANSWER_BYTES, DEFAULT_MAX_QUEUE_REQUESTS,
+	                        DEFAULT_MAX_QUEUE_BYTES};
 	for (int i = 1; i < argc; ++i) {
 		const char *a = argv[i];
 		if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
@@ -325,14 +575,13 @@ int main(int argc, char **argv)
 			}
 		} else if (strcmp(a, "--max-shot-seconds") == 0 && i + 1 < argc) {
 			if (!pool_cli_parse_double(argv[++i], &limits.max_shot_seconds) ||
-			    !(limits.max_shot_seconds > 0.0)) {
-				fprintf(stderr, "pool-shot-server: --max-shot-seconds: '%s' is not a time > 0 "
-				                "in seconds\n", argv[i]);
+			    !(limits.max_shot_seconds > 0.0) || !(limits.max_shot_seconds <= 1e6)) {
+				fprintf(stderr, "pool-shot-server: --max-shot-seconds: '%s' is not a time in "
+				                "(0, 1e6] seconds\n", argv[i]);
 				return EXIT_BAD_INPUT;
 			}
 		} else if (strcmp(a, "--max-events") == 0 && i + 1 < argc) {
-			if (!pool_cli_parse_count(argv[++i], &limits.max_events) || limits.max_events < 1 ||
-			    limits.max_events > INT_MAX) {
+			if (!parse_size_option(argv[++i], 1, &limits.max_events)) {
 				fprintf(stderr, "pool-shot-server: --max-events: '%s' is not a count in 1..%d\n",
 				        argv[i], INT_MAX);
 				return EXIT_BAD_INPUT;
@@ -344,11 +593,21 @@ int main(int argc, char **argv)
 				return EXIT_BAD_INPUT;
 			}
 		} else if (strcmp(a, "--max-answer-bytes") == 0 && i + 1 < argc) {
-			if (!pool_cli_parse_count(argv[++i], &limits.max_answer_bytes) ||
-			    limits.max_answer_bytes < MIN_MAX_ANSWER_BYTES ||
-			    limits.max_answer_bytes > INT_MAX) {
+			if (!parse_size_option(argv[++i], MIN_MAX_ANSWER_BYTES, &limits.max_answer_bytes)) {
 				fprintf(stderr, "pool-shot-server: --max-answer-bytes: '%s' is not a size in "
 				                "%ld..%d bytes\n", argv[i], MIN_MAX_ANSWER_BYTES, INT_MAX);
+				return EXIT_BAD_INPUT;
+			}
+		} else if (strcmp(a, "--max-queue-requests") == 0 && i + 1 < argc) {
+			if (!parse_size_option(argv[++i], 1, &limits.max_queue_requests)) {
+				fprintf(stderr, "pool-shot-server: --max-queue-requests: '%s' is not a count in "
+				                "1..%d\n", argv[i], INT_MAX);
+				return EXIT_BAD_INPUT;
+			}
+		} else if (strcmp(a, "--max-queue-bytes") == 0 && i + 1 < argc) {
+			if (!parse_size_option(argv[++i], 1, &limits.max_queue_bytes)) {
+				fprintf(stderr, "pool-shot-server: --max-queue-bytes: '%s' is not a size in "
+				                "1..%d bytes\n", argv[i], INT_MAX);
 				return EXIT_BAD_INPUT;
 			}
 		} else {
@@ -358,11 +617,23 @@ int main(int argc, char **argv)
 		}
 	}
 
+#ifdef __GLIBC__
+	// Before liblcm starts its receive thread: the setting is global, for every arena.
+	mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD);
+#endif
 	pool_lcm_catch_stop_signals();
 
 	server_state s;
 	memset(&s, 0, sizeof s);
 	s.limits = limits;
+	s.max_requests = max_requests;
+	atomic_init(&s.stopping, false);
+	if (pipe(s.wake_pipe) != 0) {
+		perror("pool-shot-server: pipe");
+		return EXIT_INTERNAL;
+	}
+	pthread_mutex_init(&s.lock, NULL);
+	pthread_cond_init(&s.wake, NULL);
 	char err[256];
 	s.lcm = pool_lcm_open(url, err, sizeof err);
 	if (s.lcm == NULL) {
@@ -375,37 +646,79 @@ int main(int argc, char **argv)
 		lcm_destroy(s.lcm);
 		return EXIT_INTERNAL;
 	}
-	// Bursts of requests wait in liblcm's queue (default 30) instead of being dropped.
-	lcm_subscription_set_queue_capacity(sub, 100000);
-	fprintf(stderr, "pool-shot-server: ready on %s, channel %s (budget per request: %g s, %ld "
-	        "events, %ld balls, %ld-byte answers)\n", pool_lcm_resolve_url(url),
-	        POOL_LCM_CHANNEL_SHOT_REQUEST, limits.max_shot_seconds, limits.max_events,
-	        limits.max_balls, limits.max_answer_bytes);
+	// liblcm keeps at most this many complete requests the main thread has not taken yet (its
+	// default is 30). The main thread takes them as they come, so this is only a backstop that
+	// holds a burst of small requests until each is queued or refused: what liblcm drops beyond it
+	// is never seen, hence never answered nor counted.
+	long lcm_capacity = limits.max_queue_requests > LCM_QUEUE_CAPACITY ? limits.max_queue_requests
+	                                                                   : LCM_QUEUE_CAPACITY;
+	lcm_subscription_set_queue_capacity(sub, (int)lcm_capacity);
+	// The worker blocks SIGINT and SIGTERM, so they reach the main thread and cut its poll short.
+	sigset_t stop_signals, old_mask;
+	sigemptyset(&stop_signals);
+	sigaddset(&stop_signals, SIGINT);
+	sigaddset(&stop_signals, SIGTERM);
+	pthread_sigmask(SIG_BLOCK, &stop_signals, &old_mask);
+	pthread_t worker;
+	int created = pthread_create(&worker, NULL, worker_main, &s);
+	pthread_sigmask(SIG_SETMASK, &old_mask, NULL);
+	if (created != 0) {
+		fprintf(stderr, "pool-shot-server: cannot start the worker thread\n");
+		lcm_unsubscribe(s.lcm, sub);
+		lcm_destroy(s.lcm);
+		return EXIT_INTERNAL;
+	}
+	fprintf(stderr, "pool-shot-server: ready on %s, channel %s (budget per request: %g s from "
+	        "arrival, %ld events, %ld balls, %ld-byte answers; queue: %ld requests, %ld bytes)\n",
+	        pool_lcm_resolve_url(url), POOL_LCM_CHANNEL_SHOT_REQUEST, limits.max_shot_seconds,
+	        limits.max_events, limits.max_balls, limits.max_answer_bytes,
+	        limits.max_queue_requests, limits.max_queue_bytes);
 
 	int status = 0;
-	while (!pool_lcm_stop_requested() && (max_requests == 0 || s.answered < max_requests)) {
+	for (;;) {
+		pthread_mutex_lock(&s.lock);
+		bool done = max_requests > 0 && s.answered >= max_requests;
+		pthread_mutex_unlock(&s.lock);
+		if (done || pool_lcm_stop_requested()) {
+			break;
+		}
 		// A timeout so a signal that arrives between the check and poll stops us within 200 ms.
-		int ready = pool_lcm_wait(s.lcm, 200);
-		if (ready < 0) {
+		struct pollfd pfd[2] = {{.fd = lcm_get_fileno(s.lcm), .events = POLLIN},
+		                        {.fd = s.wake_pipe[0], .events = POLLIN}};
+		int ready = poll(pfd, 2, 200);
+		if (ready < 0 && errno != EINTR) {
 			perror("pool-shot-server: poll");
 			status = EXIT_INTERNAL;
 			break;
 		}
-		if (ready > 0 && lcm_handle(s.lcm) != 0) {
+		if (ready > 0 && (pfd[0].revents & POLLIN) && lcm_handle(s.lcm) != 0) {
 			fprintf(stderr, "pool-shot-server: lcm_handle failed\n");
 			status = EXIT_INTERNAL;
 			break;
 		}
 	}
+	pthread_mutex_lock(&s.lock);
+	atomic_store(&s.stopping, true);
+	pthread_cond_broadcast(&s.wake);
+	pthread_mutex_unlock(&s.lock);
+	pthread_join(worker, NULL);
 
 	fprintf(stderr,
 	        "pool-shot-server: answered %ld requests (%ld with an error), skipped %ld undecodable "
 	        "datagrams, %ld publish failures; %ld over budget, %ld answers over "
-	        "--max-answer-bytes, %ld shots abandoned on stop\n",
-	        s.answered, s.errors, s.undecodable, s.publish_failures, s.over_budget, s.oversized,
-	        s.abandoned);
+	        "--max-answer-bytes, %ld shots abandoned on stop; %ld refused as busy (queue full), "
+	        "%ld expired in the queue, %ld queued requests abandoned on stop; queue peak %ld "
+	        "requests, %ld bytes\n",
+	        s.answered, s.errors, s.undecodable, s.publish_failures, s.over_budget + s.too_large,
+	        s.oversized,
+	        s.abandoned, s.busy, s.expired, s.abandoned_queued, s.peak_queued,
+	        s.peak_queued_bytes);
 	lcm_unsubscribe(s.lcm, sub);
 	lcm_destroy(s.lcm);
 	pool_sim_destroy(s.sim);
+	pthread_cond_destroy(&s.wake);
+	pthread_mutex_destroy(&s.lock);
+	close(s.wake_pipe[0]);
+	close(s.wake_pipe[1]);
 	return status;
 }

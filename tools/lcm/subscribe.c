@@ -121,8 +121,16 @@ int main(int argc, char **argv)
 	if (states) {
 		st = pool_lcm_table_state_t_subscribe(lcm, POOL_LCM_CHANNEL_STATE, on_state, NULL);
 	}
+	// liblcm keeps at most 30 received messages per subscription until lcm_handle takes them and
+	// drops the rest silently; pool-sim publishes a shot's events in one burst, and --playback
+	// frames come at up to 1000 Hz: room for bursts on every subscription.
 	pool_lcm_event_t_subscription_set_queue_capacity(se, 10000);
 	pool_lcm_shot_t_subscription_set_queue_capacity(ss, 10000);
+	if (st != NULL) {
+		pool_lcm_table_state_t_subscription_set_queue_capacity(st, 10000);
+	}
+	// Once this line is out, everything published reaches us (scripts and tests wait for it).
+	fprintf(stderr, "pool-lcm-subscribe: subscribed on %s\n", pool_lcm_resolve_url(url));
 
 	int status = 0;
 	struct timespec last;
