@@ -43,9 +43,77 @@ static double eval_slope(const double *p, int deg, double t) {
 	return deg >= 1 ? v : 0.0;
 }
 
-// First root in [0, T] of the polynomial p (ascending, degree <= 4) at which it falls (p' < 0:
-// the gap closes), INFINITY when none. p has the sign of the gap for t > 0.
-static double first_falling_root(const double *p, int deg, double T) {
+// Insurance against a root the solver lost: not closing now (p(0) >= 0), interpenetrating at
+// the end of the window means a crossing in between; bisect for the last instant still apart.
+// INFINITY when there is none.
+static double lost_crossing(const double *p, int deg, double T) {
+	if (!(p[0] >= 0.0 && isfinite(T) && eval(p, deg, T) < 0.0))
+		return INFINITY;
+	double a = 0.0, b = T;
+	for (int i = 0; i < 200; ++i) {
+		const double mid = 0.5 * (a + b);
+		if (mid <= a || mid >= b)
+			break;
+		if (eval(p, deg, mid) >= 0.0)
+			a = mid;
+		else
+			b = mid;
+	}
+	return a;
+}
+
+/// Coefficient magnitudes within which the quadratic formula neither overflows nor underflows
+/// (b^2 and 4ac stay normal); outside, the scaled general solver takes the case (a subnormal
+/// velocity such as 5e-324 m/s once gave a "root" at 0 from an underflowed discriminant).
+#define CONTACT_CLOSED_FORM_MIN 1e-150
+#define CONTACT_CLOSED_FORM_MAX 1e150
+
+static int closed_form_safe(const double *p, int deg) {
+	for (int k = 0; k <= deg; ++k) {
+		const double m = fabs(p[k]);
+		if (m != 0.0 && !(m >= CONTACT_CLOSED_FORM_MIN && m <= CONTACT_CLOSED_FORM_MAX))
+			return 0;
+	}
+	return 1;
+}
+
+// First root in [0, T] of a + b t + c t^2 where it falls, INFINITY when none: the closed form
+// (the numerically stable pair of roots), for the contacts of a ball with a line.
+static double first_falling_root_quadratic(double a, double b, double c, double T) {
+	double r[2];
+	int n = 0;
+	if (c == 0.0) {
+		if (b != 0.0)
+			r[n++] = -a / b;
+	} else {
+		const double disc = b * b - 4.0 * c * a;
+		if (disc >= 0.0) {
+			const double q = -0.5 * (b + copysign(sqrt(disc), b));
+			if (q != 0.0) {
+				r[n++] = q / c;
+				r[n++] = a / q;
+			} else if (a == 0.0) {
+				r[n++] = 0.0; // a = b = 0: a double root at 0
+			}
+		}
+	}
+	if (n == 2 && r[1] < r[0]) {
+		const double t = r[0];
+		r[0] = r[1];
+		r[1] = t;
+	}
+	for (int i = 0; i < n; ++i)
+		if (r[i] >= 0.0 && r[i] <= T && b + 2.0 * c * r[i] < 0.0)
+			return r[i];
+	const double p[3] = {a, b, c};
+	return lost_crossing(p, 2, T);
+}
+
+double pool_contact_first_falling_root(const double *p, int deg, double T) {
+	while (deg > 0 && p[deg] == 0.0)
+		--deg;
+	if (deg <= 2 && closed_form_safe(p, deg))
+		return first_falling_root_quadratic(p[0], deg >= 1 ? p[1] : 0.0, deg >= 2 ? p[2] : 0.0, T);
 	double c[5] = {0.0, 0.0, 0.0, 0.0, 0.0}; // the solver's order: highest degree first
 	for (int k = 0; k <= deg; ++k)
 		c[4 - k] = p[k];
@@ -67,29 +135,14 @@ static double first_falling_root(const double *p, int deg, double T) {
 		if (!(lo <= T))
 			break;
 	}
-	// Insurance against a root the solver lost: not closing now, interpenetrating at the end of
-	// the window means a crossing in between; bisect for the last instant still apart.
-	if (p[0] >= 0.0 && eval(p, deg, T) < 0.0) {
-		double a = 0.0, b = T;
-		for (int i = 0; i < 200; ++i) {
-			double mid = 0.5 * (a + b);
-			if (mid <= a || mid >= b)
-				break;
-			if (eval(p, deg, mid) >= 0.0)
-				a = mid;
-			else
-				b = mid;
-		}
-		return a;
-	}
-	return INFINITY;
+	return lost_crossing(p, deg, T);
 }
 
 double pool_contact_next(const pool_contact_gap *g, double T) {
 	if (!(T >= 0.0))
 		return INFINITY;
 	if (g->gap > POOL_TOUCH_TOLERANCE)
-		return T > 0.0 ? first_falling_root(g->f, 4, T) : INFINITY;
+		return T > 0.0 ? pool_contact_first_falling_root(g->f, 4, T) : INFINITY;
 	if (pool_contact_now(g->gap, g->speed, g->accel))
 		return 0.0;
 	// Touching, not colliding now: the gap is exactly zero, f = tau q(tau), and for tau > 0 q
@@ -97,5 +150,5 @@ double pool_contact_next(const pool_contact_gap *g, double T) {
 	// A pair creeping together too slowly to matter (q(0) < 0) first separates: that root of q
 	// rises and is stepped over.
 	const double q[4] = {g->f[1], g->f[2], g->f[3], g->f[4]};
-	return first_falling_root(q, 3, T);
+	return pool_contact_first_falling_root(q, 3, T);
 }

@@ -50,6 +50,10 @@ typedef struct pool_contact_gap {
 /// when none.
 double pool_contact_next(const pool_contact_gap *g, double T);
 
+/// First root in [0, T] of p[0] + p[1] t + ... + p[deg] t^deg (deg <= 4) where it falls (the
+/// gap closes), INFINITY when none: the rule for bodies apart, when the caller knows they are.
+double pool_contact_first_falling_root(const double *p, int deg, double T);
+
 /// 1 when bodies in contact (gap <= POOL_TOUCH_TOLERANCE) collide now by the rules above.
 int pool_contact_now(double gap, double speed, double accel);
 

@@ -38,21 +38,24 @@ static int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double 
 }
 
 double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
-	const double d0 = 2.0 * R;
-	const double dd = pool_v3_dot(dp, dp), dist = sqrt(dd);
-	if (!(T >= 0.0) || !(dist > 0.0))
-		return INFINITY; // coincident centres have no normal (placement refuses them)
-	pool_contact_gap g;
-	g.gap = dist - d0;
-	if (g.gap > POOL_TOUCH_TOLERANCE && (T == 0.0 || !may_touch(dp, dv, da, R, T)))
+	const double d0 = 2.0 * R, touch = d0 + POOL_TOUCH_TOLERANCE;
+	const double dd = pool_v3_dot(dp, dp);
+	if (!(T >= 0.0))
 		return INFINITY;
 	// f = |p|^2 - (2R)^2 with p(tau) = dp + dv tau + da tau^2.
 	const double pv = pool_v3_dot(dp, dv), vv = pool_v3_dot(dv, dv);
+	pool_contact_gap g;
 	g.f[0] = dd - d0 * d0;
 	g.f[1] = 2.0 * pv;
 	g.f[2] = vv + 2.0 * pool_v3_dot(da, dp);
 	g.f[3] = 2.0 * pool_v3_dot(da, dv);
 	g.f[4] = pool_v3_dot(da, da);
+	if (dd > touch * touch) // apart: the hot path, no square root
+		return T > 0.0 && may_touch(dp, dv, da, R, T) ? pool_contact_first_falling_root(g.f, 4, T) : INFINITY;
+	const double dist = sqrt(dd);
+	if (!(dist > 0.0))
+		return INFINITY; // coincident centres have no normal (placement refuses them)
+	g.gap = dist - d0;
 	// Rate and curvature of the distance |p|: |p|' = p.p'/|p|, |p|'' = (p'.p' + p.p'')/|p| - (p.p')^2/|p|^3
 	// (the tangential part of dv curves a touching pair apart).
 	g.speed = -pv / dist;

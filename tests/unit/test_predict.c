@@ -141,6 +141,14 @@ static void test_cushion_slow_separation_pulled_back(void **state) {
 	assert_int_equal(rail, POOL_RAIL_NORTH);
 	s.vel = pool_v3(0.0, 1e-13, 0.0);
 	near_rel(pool_predict_cushion(&t, R, &s, pool_v3(0, 0, 0), INFINITY, &rail, &pocket), (t.width - dc - 0.6) / 1e-13, 1e-12);
+	// Subnormal speeds: 5e-324 m/s towards a rail 3.4e-4 m away takes 7e319 s, never within a
+	// window (the quadratic formula's discriminant underflows there: found by the soak).
+	s.pos = pool_v3(1.0, dc + 3.4e-4, R);
+	s.vel = pool_v3(0.0, -5e-324, 0.0);
+	assert_true(isinf(pool_predict_cushion(&t, R, &s, pool_v3(0, 7.4e-322, 0), 1.0, &rail, &pocket)));
+	s.vel = pool_v3(-0.5, -5e-324, 0.0);
+	near_rel(pool_predict_cushion(&t, R, &s, pool_v3(0, 7.4e-322, 0), 10.0, &rail, &pocket), (1.0 - dc) / 0.5, 1e-12);
+	assert_int_equal(rail, POOL_RAIL_WEST);
 }
 
 // Cushions: a rolling ball meets the north nose when W - y = sqrt(R^2 - (h - R)^2); pockets by
