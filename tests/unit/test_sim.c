@@ -465,7 +465,10 @@ static void test_memory(void **state) {
 	pool_sim *sim = make_sim(&def);
 	assert_int_equal(break_shot(sim, &def), POOL_OK);
 	int n_first;
-	pool_sim_events(sim, &n_first);
+	const pool_event *first_events = pool_sim_events(sim, &n_first);
+	pool_event *ref = malloc(sizeof *ref * (size_t)n_first);
+	assert_non_null(ref);
+	memcpy(ref, first_events, sizeof *ref * (size_t)n_first);
 	long after_first = c.allocs;
 	assert_true(after_first > 1);
 	for (int k = 0; k < 5; ++k) {
@@ -476,6 +479,7 @@ static void test_memory(void **state) {
 	pool_sim_destroy(sim);
 	assert_int_equal(c.live, 0);
 
+	int resumed = 0;
 	for (long fail = 0; fail < after_first; ++fail) {
 		counting f = {0, 0, fail};
 		def.allocator = (pool_allocator){count_alloc, count_free, &f};
@@ -488,6 +492,28 @@ static void test_memory(void **state) {
 				int n;
 				pool_sim_events(s, &n);
 				assert_int_equal(n, n_first);
+			} else {
+				// Out of memory leaves the simulation usable: once memory is back, a shot cut
+				// short in pool_sim_run resumes where it stopped to the very same events, and a
+				// reset simulation runs the whole shot again, bit for bit.
+				assert_int_equal(r, POOL_ERR_OUT_OF_MEMORY);
+				f.fail_at = -1;
+				int n;
+				const pool_event *ev = pool_sim_events(s, &n);
+				const int cut_in_run = pool_sim_ball_count(s) == 16 && n > 0;
+				assert_int_equal(pool_sim_run(s), POOL_OK);
+				if (cut_in_run) {
+					++resumed;
+					ev = pool_sim_events(s, &n);
+					assert_int_equal(n, n_first);
+					assert_memory_equal(ev, ref, sizeof *ref * (size_t)n);
+				}
+				assert_int_equal(pool_sim_reset(s, NULL, NULL), POOL_OK);
+				assert_int_equal(break_shot(s, &def), POOL_OK);
+				ev = pool_sim_events(s, &n);
+				assert_int_equal(n, n_first);
+				assert_memory_equal(ev, ref, sizeof *ref * (size_t)n);
+				r = POOL_ERR_OUT_OF_MEMORY;
 			}
 			pool_sim_destroy(s);
 		} else {
@@ -496,6 +522,8 @@ static void test_memory(void **state) {
 		assert_true(r == POOL_OK || r == POOL_ERR_OUT_OF_MEMORY);
 		assert_int_equal(f.live, 0);
 	}
+	assert_true(resumed > 0); // some failures hit pool_sim_run's history growth
+	free(ref);
 }
 
 // A ball frozen to the north rail, struck into a slide along it whose slip curves it into the rail:
