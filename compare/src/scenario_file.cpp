@@ -2,7 +2,10 @@
 
 #include <jansson.h>
 
+#include "read_input.h"
+
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -46,13 +49,18 @@ bool parse_scenario(const std::string &name, const std::string &json, std::uniqu
 }
 
 bool load_scenario(const std::string &path, std::unique_ptr<Scenario> *out, std::string *error) {
-	std::ifstream in(path, std::ios::binary);
-	if (!in) {
-		*error = path + ": cannot read the file";
+	// The commands' input limit (read_input.h): a scenario is kilobytes; /dev/zero or a runaway
+	// file is refused with a message instead of filling the memory.
+	char *data = nullptr;
+	size_t length = 0;
+	char message[512] = {0};
+	if (pool_read_input(path.c_str(), POOL_INPUT_DEFAULT_MAX, &data, &length, message, sizeof message) != 0) {
+		*error = message;
 		return false;
 	}
 	std::ostringstream text;
-	text << in.rdbuf();
+	text.write(data, (std::streamsize)length);
+	free(data);
 	std::string stem = path.substr(path.find_last_of('/') + 1);
 	if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".json") == 0)
 		stem.resize(stem.size() - 5);

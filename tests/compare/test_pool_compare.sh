@@ -53,13 +53,15 @@ cat >"$WORK/overlap.json" <<'JSON'
 {"format": "libpool-scenario/1", "balls": [{"id": 0, "pos": [1.0, 0.6]}, {"id": 1, "pos": [1.03, 0.6]}]}
 JSON
 expect 2 "overlap.json: balls\[1\].pos: overlaps ball 0" --engines frozen --scenario "$WORK/overlap.json"
+# Input larger than the commands' limit (64 MiB): refused with a message, not read to the end.
+expect 2 "/dev/zero: input is larger than the limit of 67108864 bytes" --engines frozen --scenario /dev/zero
 printf '{"format": "libpool-scenario/1", "balls": [' >"$WORK/broken.json"
 expect 2 "broken.json: " --engines frozen --scenario "$WORK/broken.json"
 cat >"$WORK/unknown.json" <<'JSON'
 {"format": "libpool-scenario/1", "balls": [{"id": 0, "pos": [1.0, 0.6]}], "spin": 3}
 JSON
 expect 2 "unknown.json: spin: unknown field" --engines frozen --scenario "$WORK/unknown.json"
-expect 2 "nofile.json: cannot read" --engines frozen --scenario "$WORK/nofile.json"
+expect 2 "nofile.json: No such file or directory" --engines frozen --scenario "$WORK/nofile.json"
 
 # LCM: refused cleanly when not built in; published over the in-process transport when it is.
 if [ "$LCM" = lcm ]; then
