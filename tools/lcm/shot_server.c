@@ -22,10 +22,10 @@
 // larger than the receivers' socket buffers) is replaced by one carrying the final states and an
 // error saying so.
 //
-// Memory: a request's scenario is freed once it is answered, and (glibc) allocations of
-// MMAP_THRESHOLD bytes or more, liblcm's reassembly buffers for large datagrams included, are
-// mapped and unmapped one by one instead of being kept in malloc's heaps, so the resident size goes
-// back down after a burst of large requests.
+// Memory: a request's scenario is freed once it is answered, and once no datagram has come for
+// 200 ms the main thread gives back to the system what malloc kept of freed blocks (glibc
+// malloc_trim, every thread's heap: liblcm's receive thread assembles each large datagram in a
+// block of its own size), so the resident size goes back down after a burst of large requests.
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <inttypes.h>
@@ -70,10 +70,8 @@
 #define STEP_CHUNK 16
 /// A simulation that held more events than this is freed after the shot instead of reused.
 #define RETAIN_EVENTS 100000
-/// Allocations from this size up get their own mapping (glibc mallopt M_MMAP_THRESHOLD), given
-/// back to the system when freed. Fixing it also stops glibc from raising it after each free of a
-/// mapped block, which is what kept hundreds of megabytes after a burst of 4 MB requests.
-#define MMAP_THRESHOLD (256 * 1024)
+/// Request bytes received after which an idle server trims malloc's heaps (release_memory).
+#define TRIM_BYTES (1L << 20)
 
 static const char usage_text[] =
 	"usage: pool-shot-server [--lcm-url URL] [--max-requests N] [--max-shot-seconds S]\n"
@@ -151,7 +149,7 @@ typedef struct server_state {
 	long too_large;       // requests alone larger than --max-queue-bytes (main only)
 	long over_budget;     // requests over --max-shot-seconds (while running), --max-events or
 	                      // --max-balls (worker only; the report adds too_large)
-	long trim_bytes;      // request bytes answered since the last malloc_trim (worker only)
+	atomic_long trim_bytes; // request bytes received or freed since the last malloc_trim
 	long expired;         // budget spent in the queue: answered with an error, not simulated
 	long oversized;       // answers over --max-answer-bytes, replaced by the final states
 	long abandoned;       // running shots given up because a stop signal arrived
@@ -433,7 +431,6 @@ static void *worker_main(void *user)
 			s->queued--;
 			s->queued_bytes -= q->bytes;
 		}
-		bool idle = s->head == NULL;
 		pthread_mutex_unlock(&s->lock);
 		if (q == NULL) {
 			return NULL; // stopping, nothing left
@@ -448,18 +445,8 @@ static void *worker_main(void *user)
 		} else {
 			answer_request(s, q);
 		}
-		s->trim_bytes += q->bytes;
+		atomic_fetch_add(&s->trim_bytes, q->bytes);
 		free_queued(q);
-#ifdef __GLIBC__
-		// Once idle after at least a megabyte of requests, give back what the scenarios' many
-		// small allocations left in malloc's heaps (rare for a stream of small requests).
-		if (idle && s->trim_bytes >= (1L << 20)) {
-			malloc_trim(0);
-			s->trim_bytes = 0;
-		}
-#else
-		(void)idle;
-#endif
 	}
 }
 
@@ -482,6 +469,7 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 {
 	(void)channel;
 	server_state *s = user;
+	atomic_fetch_add(&s->trim_bytes, (long)rbuf->data_size);
 	char err[400];
 	int64_t request_id = 0;
 	if (pool_lcm_request_peek(rbuf->data, rbuf->data_size, &request_id, err, sizeof err) != 0) {
@@ -546,6 +534,23 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 	s->tail = q;
 	pthread_cond_signal(&s->wake);
 	pthread_mutex_unlock(&s->lock);
+}
+
+// After 200 ms without a datagram, and at least TRIM_BYTES of requests received or freed since the
+// last time:
+// gives back to the system what malloc keeps of freed blocks, in every thread's heap (liblcm's
+// receive thread assembles each large datagram in a block of its own size; glibc keeps such
+// blocks for reuse, which is fast during a burst but held ~80 MB after a flood of 4 MB requests).
+static void release_memory(server_state *s)
+{
+#ifdef __GLIBC__
+	if (atomic_load(&s->trim_bytes) >= TRIM_BYTES) {
+		atomic_store(&s->trim_bytes, 0);
+		malloc_trim(0);
+	}
+#else
+	(void)s;
+#endif
 }
 
 static bool parse_size_option(const char *value, long min, long *out)
@@ -617,10 +622,6 @@ int main(int argc, char **argv)
 		}
 	}
 
-#ifdef __GLIBC__
-	// Before liblcm starts its receive thread: the setting is global, for every arena.
-	mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD);
-#endif
 	pool_lcm_catch_stop_signals();
 
 	server_state s;
@@ -628,6 +629,7 @@ int main(int argc, char **argv)
 	s.limits = limits;
 	s.max_requests = max_requests;
 	atomic_init(&s.stopping, false);
+	atomic_init(&s.trim_bytes, 0);
 	if (pipe(s.wake_pipe) != 0) {
 		perror("pool-shot-server: pipe");
 		return EXIT_INTERNAL;
@@ -682,7 +684,8 @@ int main(int argc, char **argv)
 		if (done || pool_lcm_stop_requested()) {
 			break;
 		}
-		// A timeout so a signal that arrives between the check and poll stops us within 200 ms.
+		// A timeout so a signal that arrives between the check and poll stops us within 200 ms;
+		// 200 ms without a datagram is also when memory is given back.
 		struct pollfd pfd[2] = {{.fd = lcm_get_fileno(s.lcm), .events = POLLIN},
 		                        {.fd = s.wake_pipe[0], .events = POLLIN}};
 		int ready = poll(pfd, 2, 200);
@@ -695,6 +698,9 @@ int main(int argc, char **argv)
 			fprintf(stderr, "pool-shot-server: lcm_handle failed\n");
 			status = EXIT_INTERNAL;
 			break;
+		}
+		if (ready == 0) {
+			release_memory(&s);
 		}
 	}
 	pthread_mutex_lock(&s.lock);
