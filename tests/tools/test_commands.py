@@ -416,6 +416,48 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
                 self.assertTrue(message.startswith("pool-sim: "), message)
                 self.assertIn(expect, message, name)
 
+    def test_airborne_inputs_exit_2_naming_the_field(self):
+        # options.airborne = true: 3D positions and vertical velocities are accepted by the
+        # parser; what it refuses exits 2 with the field named. A valid airborne scenario gets
+        # past the parser; until libpool simulates airborne motion, pool-sim then exits 2 with the
+        # library's options.airborne message (once it does, exit 0 with a result).
+        def air(change=None):
+            doc = straight_shot()
+            doc["options"] = {"airborne": True}
+            if change:
+                change(doc)
+            return json.dumps(doc)
+
+        def ball(i, **fields):
+            return lambda d: d["balls"][i].update(fields)
+
+        cases = [
+            ("air_below_cloth", air(ball(1, pos=[1.9, 0.6, 0.01])), "balls[1].pos: below the cloth"),
+            ("air_overlap_3d", air(lambda d: d["balls"].append({"id": 5, "pos": [1.905, 0.635, 0.07]})),
+             "balls[2].pos: overlaps ball 1 by"),
+            ("air_duplicate", air(lambda d: d["balls"].append({"id": 1, "pos": [1.0, 0.3, 0.2]})),
+             "balls[2].id: duplicate id 1"),
+            ("air_off_table", air(ball(1, pos=[2.6, 0.5, 0.3])), "balls[1].pos: off the table"),
+            ("air_theta_90", air(lambda d: d["strike"].update(theta=90)), "strike.theta: must be in [0, 90) degrees"),
+            ("air_strike_flying", air(ball(0, pos=[0.635, 0.635, 0.2])), "strike.ball: ball 0 must be at rest"),
+            ("air_fast", air(ball(1, vel=[0.0, 0.0, 200.0])), "balls[1].vel: speed above"),
+        ]
+        for name, text, expect in cases:
+            with self.subTest(name=name):
+                r = sim(write(f"bad_{name}.json", text))
+                self.assertEqual(r.returncode, 2, f"{name}: {r.stderr!r}")
+                self.assertEqual(r.stdout, b"")
+                message = r.stderr.decode()
+                self.assertTrue(message.startswith("pool-sim: "), message)
+                self.assertIn(expect, message, name)
+        ok = air(lambda d: (d["balls"][1].update(pos=[1.905, 0.635, 0.2], vel=[0.0, 0.0, 1.0]),
+                            d["strike"].update(theta=60)))
+        r = sim(write("air_ok.json", ok))
+        if r.returncode != 0:
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn(b"options.airborne", r.stderr)
+            self.assertNotIn(b"balls[", r.stderr)  # not refused by the parser
+
     def test_missing_file(self):
         path = os.path.join(ARGS.work, "does-not-exist.json")
         r = sim(path)
@@ -686,6 +728,98 @@ class TestRack(unittest.TestCase, ResultChecks):
         self.assertEqual(r.stdout, b"")
         with open(out, encoding="utf-8") as f:
             self.assertEqual(len(json.load(f)["balls"]), 10)
+
+
+TABLE_9FT = {"length": 2.54, "width": 1.27, "cushion_height": 0.03629, "corner_mouth": 0.1143,
+             "side_mouth": 0.127}
+
+
+def airborne_result(dt=0.01):
+    """A synthetic libpool-result/1 with flights, as the library will write them once it flies
+    balls (it does not yet): cue ball 0 jumps over ball 1 (15 cm at the top, right above it),
+    lands, bounces twice (e_table 0.5) and slides to a stop; ball 2 hops off the north cushion
+    and leaves the table (state off_table, beyond the rail). Motions follow PHYSICS.md: parabolas
+    (g 9.81) in flight, constant deceleration on the cloth; samples every dt plus every event
+    time, ending where a ball leaves the table."""
+    g, W = 9.81, TABLE_9FT["width"]
+    # Per ball, pieces (t_start, p0, v0, a, state after the event that starts the piece).
+    def piece(t, p, v, a, state):
+        return {"t": t, "p": list(p), "v": list(v), "a": list(a), "state": state}
+
+    def at(pc, t):
+        tau = t - pc["t"]
+        return ([pc["p"][k] + pc["v"][k] * tau + pc["a"][k] * tau * tau / 2 for k in range(3)],
+                [pc["v"][k] + pc["a"][k] * tau for k in range(3)])
+
+    fly = [0.0, 0.0, -g]
+    events = []
+    # Ball 0: a jump (vz 1.72 m/s) along +x over ball 1, two bounces, then sliding to rest.
+    cue = [piece(0.0, [0.635, 0.635, R], [1.5, 0.0, 1.72], fly, "airborne")]
+    events.append((0.0, "strike", 0))
+    vx, vz = 1.5, 1.72
+    for n, (vx_after, state) in enumerate([(1.35, "airborne"), (1.25, "airborne"),
+                                          (1.2, "sliding")]):
+        last = cue[-1]
+        t = last["t"] + 2 * vz / g  # back on the cloth
+        p, _ = at(last, t)
+        p[2] = R
+        vz = 0.5 * vz if state == "airborne" else 0.0
+        slide = [-1.5, 0.0, 0.0] if state == "sliding" else fly
+        cue.append(piece(t, p, [vx_after, 0.0, vz], slide, state))
+        events.append((t, "ball_table", 0))
+    last = cue[-1]
+    t_stop = last["t"] + 1.2 / 1.5
+    p, _ = at(last, t_stop)
+    cue.append(piece(t_stop, p, [0, 0, 0], [0, 0, 0], "stationary"))
+    events.append((t_stop, "roll_stop", 0))
+    # Ball 2: rolling north, hops at the cushion (y = W - R) and clears the rail.
+    hop = [piece(0.0, [1.9, 0.9, R], [0.3, 1.6, 0.0], [0, 0, 0], "rolling")]
+    t_c = (W - R - 0.9) / 1.6
+    p, _ = at(hop[0], t_c)
+    hop.append(piece(t_c, p, [0.3, 0.9, 1.1], fly, "airborne"))
+    events.append((t_c, "ball_cushion", 2))
+    t_off = t_c + (W + 0.05 - p[1]) / 0.9
+    p, _ = at(hop[1], t_off)
+    hop.append(piece(t_off, p, [0, 0, 0], [0, 0, 0], "off_table"))
+    events.append((t_off, "off_table", 2))
+    pieces = {0: cue, 1: [piece(0.0, [1.0, 0.635, R], [0, 0, 0], [0, 0, 0], "stationary")],
+              2: hop}
+
+    def state(ball_id, t):
+        pcs = [pc for pc in pieces[ball_id] if pc["t"] <= t]
+        pc = pcs[-1]
+        pos, vel = at(pc, t)
+        if pc["state"] in ("stationary", "off_table"):
+            vel = [0.0, 0.0, 0.0]
+        return {"id": ball_id, "pos": pos, "vel": vel, "omega": [0.0, 0.0, 0.0],
+                "state": pc["state"]}
+
+    events.sort()
+    doc_events = []
+    for t, kind, ball_id in events:
+        ev = {"t": t, "type": kind, "balls": [ball_id], "after": [state(ball_id, t)]}
+        if kind == "ball_cushion":
+            ev["rail"] = "north"
+        doc_events.append(ev)
+    end = t_stop
+    grid = [k / round(1 / dt) for k in range(int(end / dt) + 1)]
+    balls = []
+    for ball_id in sorted(pieces):
+        stop = t_off if ball_id == 2 else end
+        if ball_id == 1:
+            ts = [0.0, end]
+        else:
+            ts = sorted({t for t in grid if t <= stop} | {t for t, _, _ in events if t <= stop}
+                        | {stop})
+        balls.append({"id": ball_id, "t": ts, "pos": [state(ball_id, t)["pos"] for t in ts]})
+    return {
+        "format": "libpool-result/1", "name": "jump over a ball, hop off the table",
+        "table": dict(TABLE_9FT), "ball_radius": R, "events": doc_events,
+        "final": [state(b, end) for b in sorted(pieces)],
+        "stats": {"events": len(doc_events), "sim_time": end, "end_time": end,
+                  "stop_reason": "rest", "pocketed": [], "off_table": [2]},
+        "samples": {"dt": dt, "balls": balls},
+    }
 
 
 def needs_matplotlib(test):

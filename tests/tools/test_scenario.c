@@ -85,11 +85,109 @@ static void test_fields_are_read(void **state) {
 	// Airborne mode is read; an engine that cannot simulate it yet must say so for that field.
 	const char *airborne = "{\"format\": \"libpool-scenario/1\", \"options\": {\"airborne\": true},"
 	                       " \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}";
-	if (parse(airborne, &s, err, sizeof err) == 0) {
-		assert_true(s.def.airborne);
-		pool_scenario_free(&s);
-	} else {
-		assert_non_null(strstr(err, "options.airborne"));
+	if (parse(airborne, &s, err, sizeof err) != 0)
+		fail_msg("%s", err);
+	assert_true(s.def.airborne);
+	pool_scenario_free(&s);
+}
+
+#define AIR_HEAD "{\"format\": \"libpool-scenario/1\", \"options\": {\"airborne\": true}, "
+#define PLANAR_HEAD "{\"format\": \"libpool-scenario/1\", "
+
+// options.airborne = true: 3D positions and velocities are read and checked by the parser itself
+// (the library refuses airborne simulations until it implements them; setup says so).
+static void test_airborne_balls_are_read(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[256];
+	const char *doc = AIR_HEAD
+		"\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.2], \"vel\": [1.5, -0.5, 2.0], \"omega\": [0, 30, 0]},"
+		"            {\"id\": 1, \"pos\": [0.5, 0.5, 0.028575]},"
+		"            {\"id\": 2, \"pos\": [1.0, 0.5, 0.0285749995]},"
+		"            {\"id\": 3, \"pos\": [1.5, 0.5], \"vel\": [0, 0, 1]},"
+		"            {\"id\": 4, \"pos\": [2.0, 0.5]}],"
+		" \"strike\": {\"ball\": 4, \"speed\": 3, \"theta\": 70, \"b\": 0.01}}";
+	if (parse(doc, &s, err, sizeof err) != 0)
+		fail_msg("%s", err);
+	assert_true(s.def.airborne);
+	assert_int_equal(s.ball_count, 5);
+	// ball 0 is straight above ball 1, 0.171 m apart: no overlap in 3D
+	assert_true(s.balls[0].pos.z == 0.2);
+	assert_true(s.balls[0].vel.x == 1.5 && s.balls[0].vel.y == -0.5 && s.balls[0].vel.z == 2.0);
+	assert_int_equal(s.balls[0].motion, POOL_MOTION_AIRBORNE);
+	assert_int_equal(s.balls[1].motion, POOL_MOTION_STATIONARY);
+	assert_true(s.balls[2].pos.z == R); // within the tolerance below the cloth: put on it
+	assert_int_equal(s.balls[2].motion, POOL_MOTION_STATIONARY);
+	assert_true(s.balls[3].pos.z == R && s.balls[3].vel.z == 1.0); // a ball thrown up from the cloth
+	assert_int_equal(s.balls[3].motion, POOL_MOTION_AIRBORNE);
+	assert_true(s.has_strike);
+	assert_true(fabs(s.strike.theta - 70 * 3.14159265358979323846 / 180) < 1e-15);
+
+	// The parse does not depend on the library simulating airborne motion; setup returns the
+	// library's answer (today its "not implemented yet" error for options.airborne).
+	pool_sim *sim = NULL;
+	pool_error e = {{0}};
+	pool_result r = pool_scenario_setup(&s, &sim, &e);
+	if (r != POOL_OK)
+		assert_non_null(strstr(e.message, "airborne"));
+	pool_sim_destroy(sim);
+	pool_scenario_free(&s);
+}
+
+static void test_airborne_refusals_name_the_field(void **state) {
+	(void)state;
+	static const struct {
+		const char *doc;
+		const char *expect;
+	} cases[] = {
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.02]}]}", "balls[0].pos: below the cloth"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}, {\"id\": 1, \"pos\": [1.5, 0.5, 0.0285]}]}",
+		 "balls[1].pos: below the cloth"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, -1]}]}", "balls[0].pos: below the cloth"},
+		// 3D interpenetration: ball 1 sits 0.05 m above ball 0 (< 2R)
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}, {\"id\": 1, \"pos\": [0.5, 0.5, 0.078575]}]}",
+		 "balls[1].pos: overlaps ball 0 by 0.00715 m"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.1]}, {\"id\": 1, \"pos\": [0.52, 0.52, 0.12]}]}",
+		 "balls[1].pos: overlaps ball 0"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}, {\"id\": 0, \"pos\": [1.5, 0.5, 0.3]}]}",
+		 "balls[1].id: duplicate id 0"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}, {\"id\": 1, \"pos\": [3.5, 0.5, 0.3]}]}",
+		 "balls[1].pos: off the table"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.3], \"vel\": [0, 0, 150]}]}",
+		 "balls[0].vel: speed above"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.3], \"vel\": [0]}]}",
+		 "balls[0].vel: must be an array of 2 or 3 numbers"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.3, 1]}]}", "balls[0].pos: must be an array"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 1e300]}]}", "balls[0].pos[2]: "},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}], \"strike\": {\"ball\": 0, \"speed\": 2, \"theta\": 90}}",
+		 "strike.theta: must be in [0, 90) degrees"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}], \"strike\": {\"ball\": 0, \"speed\": 2, \"theta\": 120}}",
+		 "strike.theta"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.2]}], \"strike\": {\"ball\": 0, \"speed\": 2}}",
+		 "strike.ball: ball 0 must be at rest on the cloth"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5], \"vel\": [0, 0, 1]}], \"strike\": {\"ball\": 0, \"speed\": 2}}",
+		 "strike.ball: ball 0 must be at rest on the cloth"},
+		{AIR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}], \"strike\": {\"ball\": 0, \"speed\": 1, \"a\": 0.02, \"b\": 0.021}}",
+		 "strike"},
+		{AIR_HEAD "\"params\": {\"e_table\": -1}, \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.2]}]}",
+		 "params.e_table"},
+		// Planar mode keeps the library's rules exactly: z must be R, no vertical velocity.
+		{PLANAR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.2]}]}", "balls[0].pos: z must be the ball radius"},
+		{PLANAR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5], \"vel\": [1, 0, 0.5]}]}", "balls[0].vel: vertical velocity"},
+		{PLANAR_HEAD "\"options\": {\"airborne\": false}, \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5, 0.0285]}]}",
+		 "balls[0].pos: z must be the ball radius"},
+		{PLANAR_HEAD "\"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}], \"strike\": {\"ball\": 0, \"speed\": 2, \"theta\": 90}}",
+		 "strike.theta: must be in [0, 90) degrees"},
+	};
+	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+		pool_scenario s;
+		char err[256] = "";
+		int r = parse(cases[i].doc, &s, err, sizeof err);
+		if (r != -1 || strncmp(err, cases[i].expect, strlen(cases[i].expect)) != 0)
+			fail_msg("case %zu: got %d \"%s\", expected a message starting \"%s\"", i, r, err,
+			         cases[i].expect);
+		assert_null(s.balls);
+		assert_int_equal(s.ball_count, 0);
 	}
 }
 
@@ -418,6 +516,8 @@ int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_minimal_scenario_takes_defaults),
 		cmocka_unit_test(test_fields_are_read),
+		cmocka_unit_test(test_airborne_balls_are_read),
+		cmocka_unit_test(test_airborne_refusals_name_the_field),
 		cmocka_unit_test(test_errors_name_the_field),
 		cmocka_unit_test(test_tiny_error_buffer_is_safe),
 		cmocka_unit_test(test_load_file_names_the_path),

@@ -352,6 +352,111 @@ static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
 	return 0;
 }
 
+// A library message about "balls[0]" (a ball checked alone in a simulation of its own) is about
+// balls[index] of the file.
+static int fail_lib_ball(parse_ctx *ctx, int index, pool_result code, const pool_error *e) {
+	const char *message = e->message[0] ? e->message : pool_result_str(code);
+	static const char prefix[] = "balls[0]";
+	if (strncmp(message, prefix, sizeof prefix - 1) == 0)
+		return fail(ctx, "balls[%d]%s", index, message + sizeof prefix - 1);
+	char path[32];
+	snprintf(path, sizeof path, "balls[%d]", index);
+	return fail_lib(ctx, path, code, e);
+}
+
+// Airborne scenarios (options.airborne = true): the parse does not depend on the library
+// simulating airborne motion (pool_sim_create refuses it until it does; pool_scenario_setup then
+// returns that error). The rules the library has for planar balls are applied to each ball's
+// projection on the cloth, one ball per throw-away planar simulation (finite numbers, speed
+// limits, off the table), and the 3D rules here: a centre below z = R (beyond
+// POOL_TOUCH_TOLERANCE) is under the cloth, balls may not interpenetrate in 3D (a ball above
+// another is fine), the 3D speed is limited like the horizontal one, and the struck ball must be
+// at rest on the cloth (pool_sim_strike's rule). A centre within the tolerance below z = R is
+// put on the cloth (z = R).
+static int check_airborne(parse_ctx *ctx, pool_scenario *s) {
+	pool_sim_def planar = s->def;
+	planar.airborne = false;
+	pool_sim *sim = NULL;
+	pool_error e = {{0}};
+	pool_result r = pool_sim_create(&planar, &sim, &e);
+	if (r != POOL_OK)
+		return fail_lib(ctx, "options", r, &e);
+	const double radius = s->def.params.ball_radius;
+	int status = 0;
+	for (int j = 0; j < s->ball_count && status == 0; ++j) {
+		pool_ball_state *b = &s->balls[j];
+		if (b->pos.z < radius - POOL_TOUCH_TOLERANCE) {
+			status = fail(ctx, "balls[%d].pos: below the cloth (z = %.9g m, the centre of a ball on the "
+			              "cloth is at z = R = %.9g m)", j, b->pos.z, radius);
+			break;
+		}
+		if (b->pos.z < radius)
+			b->pos.z = radius;
+		const double speed = sqrt(b->vel.x * b->vel.x + b->vel.y * b->vel.y + b->vel.z * b->vel.z);
+		if (speed > POOL_MAX_SPEED) {
+			status = fail(ctx, "balls[%d].vel: speed above the %g m/s limit (POOL_MAX_SPEED)", j,
+			              POOL_MAX_SPEED);
+			break;
+		}
+		for (int i = 0; i < j; ++i) {
+			if (s->balls[i].id == b->id) {
+				status = fail(ctx, "balls[%d].id: duplicate id %d (also balls[%d])", j, (int)b->id, i);
+				break;
+			}
+			double dx = b->pos.x - s->balls[i].pos.x;
+			double dy = b->pos.y - s->balls[i].pos.y;
+			double dz = b->pos.z - s->balls[i].pos.z;
+			double depth = 2.0 * radius - sqrt(dx * dx + dy * dy + dz * dz);
+			if (depth > POOL_TOUCH_TOLERANCE) {
+				status = fail(ctx, "balls[%d].pos: overlaps ball %d by %.3g m", j, (int)s->balls[i].id, depth);
+				break;
+			}
+		}
+		if (status)
+			break;
+		pool_ball_state projected = *b;
+		projected.pos.z = radius;
+		projected.vel.z = 0.0;
+		memset(&e, 0, sizeof e);
+		r = pool_sim_reset(sim, &planar, &e);
+		if (r == POOL_OK)
+			r = pool_sim_add_ball(sim, &projected, &e);
+		if (r != POOL_OK)
+			status = fail_lib_ball(ctx, j, r, &e);
+		b->motion = derive_motion(b, radius);
+	}
+	if (status == 0 && s->has_strike) {
+		const pool_ball_state *b = NULL;
+		for (int i = 0; i < s->ball_count; ++i)
+			if (s->balls[i].id == s->strike_ball)
+				b = &s->balls[i];
+		if (b->pos.z > radius + POOL_TOUCH_TOLERANCE || b->vel.z != 0.0) {
+			status = fail(ctx, "strike.ball: ball %d must be at rest on the cloth to be struck",
+			              (int)s->strike_ball);
+		} else {
+			pool_ball_state projected = *b;
+			projected.pos.z = radius;
+			memset(&e, 0, sizeof e);
+			r = pool_sim_reset(sim, &planar, &e);
+			if (r == POOL_OK)
+				r = pool_sim_add_ball(sim, &projected, &e);
+			pool_vec3 vel, omega;
+			if (r == POOL_OK) {
+				memset(&e, 0, sizeof e);
+				r = pool_strike_velocities(&s->def.params, &s->strike, &vel, &omega, &e);
+			}
+			if (r == POOL_OK) {
+				memset(&e, 0, sizeof e);
+				r = pool_sim_strike(sim, s->strike_ball, &s->strike, &e);
+			}
+			if (r != POOL_OK)
+				status = fail_lib(ctx, "strike", r, &e);
+		}
+	}
+	pool_sim_destroy(sim);
+	return status;
+}
+
 // Checks the balls against each other with the library's own rules, by building a throw-away
 // simulation: pool_sim_add_ball rejects duplicates, overlaps and off-table balls and names the
 // ball "balls[i]" with i its insertion index, which is also its index in the file.
@@ -455,7 +560,7 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 	json_t *strike = json_object_get(root, "strike");
 	if (strike && parse_strike(ctx, strike, s))
 		return -1;
-	return check_with_sim(ctx, s);
+	return s->def.airborne ? check_airborne(ctx, s) : check_with_sim(ctx, s);
 }
 
 int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,

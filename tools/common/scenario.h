@@ -26,6 +26,11 @@ typedef struct pool_scenario {
 
 /// Parses and validates a scenario document. Returns 0, or -1 with a message naming the field
 /// in err (e.g. "balls[2].pos: overlaps ball 1 by 0.003 m"). On failure *scenario is empty.
+/// Planar scenarios (options.airborne false) are checked with the library's own rules (a ball
+/// must sit on the cloth, z = R, with no vertical velocity). Airborne scenarios accept 3D
+/// positions with z >= R (within POOL_TOUCH_TOLERANCE; "balls[i].pos: below the cloth") and
+/// vertical velocities, refuse 3D interpenetration, and do not need the library to simulate
+/// airborne motion: until it does, pool_scenario_setup returns its "options.airborne" error.
 int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
                         size_t err_size);
 
