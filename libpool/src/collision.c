@@ -1,4 +1,4 @@
-// Petit's collision law (PHYSICS.md "Collisions") and the cushion-nose contact geometry.
+// Petit's collision law (PHYSICS.md "Collisions").
 #include "collision.h"
 
 #include <math.h>
@@ -41,23 +41,4 @@ double pool_collide(pool_ball_state *b1, double R1, double M1, pool_ball_state *
 	b1->vel = v1n;
 	b1->omega = w1n;
 	return P;
-}
-
-double pool_cushion_contact_distance(double R, double h) {
-	const double d = h - R;
-	return sqrt(R * R - d * d);
-}
-
-pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail) {
-	pool_vec3 nose = pos; // nearest point of the nose line: same coordinate along the rail
-	nose.z = table->cushion_height;
-	switch (rail) {
-	case POOL_RAIL_SOUTH: nose.y = 0.0; break;
-	case POOL_RAIL_NORTH: nose.y = table->width; break;
-	case POOL_RAIL_WEST: nose.x = 0.0; break;
-	case POOL_RAIL_EAST: nose.x = table->length; break;
-	default: break;
-	}
-	pool_vec3 d = pool_v3_sub(pos, nose);
-	return pool_v3_scale(d, 1.0 / pool_v3_len(d));
 }

@@ -15,12 +15,4 @@
 double pool_collide(pool_ball_state *b1, double R1, double M1, pool_ball_state *b2, double R2,
                     double mass_ratio, pool_vec3 n, double N, double mu);
 
-/// Horizontal distance (m) from the nose line at which a ball on the cloth touches it:
-/// sqrt(R^2 - (h - R)^2).
-double pool_cushion_contact_distance(double R, double h);
-
-/// Contact normal of a ball centred at pos against a rail's nose (height h): from the nearest
-/// point of the nose line to the centre, normalised.
-pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail);
-
 #endif

@@ -6,10 +6,10 @@ int pool_event_key_cmp(const pool_event_key *a, const pool_event_key *b) {
 		return a->time < b->time ? -1 : 1;
 	if (a->kind != b->kind)
 		return a->kind < b->kind ? -1 : 1;
-	if (a->id_lo != b->id_lo)
-		return a->id_lo < b->id_lo ? -1 : 1;
-	if (a->id_hi != b->id_hi)
-		return a->id_hi < b->id_hi ? -1 : 1;
+	if (a->order_lo != b->order_lo)
+		return a->order_lo < b->order_lo ? -1 : 1;
+	if (a->order_hi != b->order_hi)
+		return a->order_hi < b->order_hi ? -1 : 1;
 	if (a->slot != b->slot)
 		return a->slot < b->slot ? -1 : 1;
 	return 0;

@@ -1,5 +1,7 @@
-// The event list: an indexed binary min-heap holding each ball's next predicted event.
-// Keys are absolute times with a deterministic tie-break (time, event kind, ball ids, slot).
+// The event list: an indexed binary min-heap with one slot per body (a ball today, a LINK
+// cluster later) holding that body's next predicted event. Keys are absolute times with a
+// deterministic tie-break (time, event kind, the bodies' order ids, slot); nothing in the heap
+// assumes how many balls an event involves.
 #ifndef POOL_EVENT_QUEUE_H
 #define POOL_EVENT_QUEUE_H
 
@@ -9,9 +11,9 @@
 typedef struct pool_event_key {
 	double time;    ///< s, absolute; INFINITY when the slot has no event
 	int kind;       ///< pool_event_type
-	int32_t id_lo;  ///< smaller ball id involved
-	int32_t id_hi;  ///< larger ball id involved (= id_lo for one ball)
-	int slot;       ///< owning slot (ball index), last resort so the order is total
+	int32_t order_lo; ///< smaller order id of the bodies involved (a ball's id)
+	int32_t order_hi; ///< larger one (= order_lo for an event of one body)
+	int slot;         ///< owning slot (body index), last resort so the order is total
 } pool_event_key;
 
 /// -1, 0, 1 as a orders before, equal to, after b.

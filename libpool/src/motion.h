@@ -18,7 +18,7 @@
 /// zeroed. Pocketed / off-table / airborne states are left alone.
 void pool_motion_derive(const pool_params *p, pool_ball_state *s);
 
-/// Acceleration of the centre in the given state (constant over the segment).
+/// Acceleration of the centre in the given state (constant over the segment): its segment model.
 pool_vec3 pool_motion_accel(const pool_params *p, const pool_ball_state *s);
 
 /// State dt >= 0 after the segment start s0, in closed form (never incremental); components

@@ -1,40 +1,62 @@
-// Event prediction (PHYSICS.md "Predicting events").
+// Event prediction (PHYSICS.md "Predicting events"): each contact's gap polynomial, handed to
+// the one rule for touching and approaching bodies (contact.c).
 #include "predict.h"
 
 #include <math.h>
 
-#include "collision.h"
 #include "contact.h"
-
+#include "geometry.h"
 #include "pool/sim.h"
 #include "vec3.h"
 
-// Squared distance from the origin to the segment [a, b] in the plane.
-static double seg_dist2(double ax, double ay, double bx, double by) {
-	double ex = bx - ax, ey = by - ay;
-	double ee = ex * ex + ey * ey;
-	double t = ee > 0.0 ? -(ax * ex + ay * ey) / ee : 0.0;
+// Squared distance from the origin to the segment [a, b].
+static double segment_dist2(pool_vec3 a, pool_vec3 b) {
+	const pool_vec3 e = pool_v3_sub(b, a);
+	const double ee = pool_v3_dot(e, e);
+	double t = ee > 0.0 ? -pool_v3_dot(a, e) / ee : 0.0;
 	t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-	double x = ax + t * ex, y = ay + t * ey;
-	return x * x + y * y;
+	const pool_vec3 x = pool_v3_madd(a, t, e);
+	return pool_v3_dot(x, x);
 }
 
-// Cheap rejection: over [0, T] the quadratic path p(tau) is a Bezier curve inside the triangle
-// of its control points P0, P0 + V T / 2, P0 + V T + A T^2; if that triangle stays farther
-// than 2R from the origin, the balls cannot touch.
+// Squared distance from the origin to the triangle (a, b, c), in 3D: the nearest of its edges,
+// or its plane when the origin projects inside it. Degenerate triangles (collinear control points:
+// a straight path) have no plane and are their edges.
+static double triangle_dist2(pool_vec3 a, pool_vec3 b, pool_vec3 c) {
+	double d = fmin(segment_dist2(a, b), fmin(segment_dist2(b, c), segment_dist2(c, a)));
+	const pool_vec3 nrm = pool_v3_cross(pool_v3_sub(b, a), pool_v3_sub(c, a));
+	const double nn = pool_v3_dot(nrm, nrm);
+	if (nn > 0.0) {
+		const double h = pool_v3_dot(a, nrm); // origin's plane offset times |nrm|
+		const pool_vec3 q = pool_v3_scale(nrm, h / nn); // the origin projected onto the plane
+		const double s0 = pool_v3_dot(pool_v3_cross(pool_v3_sub(b, a), pool_v3_sub(q, a)), nrm);
+		const double s1 = pool_v3_dot(pool_v3_cross(pool_v3_sub(c, b), pool_v3_sub(q, b)), nrm);
+		const double s2 = pool_v3_dot(pool_v3_cross(pool_v3_sub(a, c), pool_v3_sub(q, c)), nrm);
+		if ((s0 >= 0.0 && s1 >= 0.0 && s2 >= 0.0) || (s0 <= 0.0 && s1 <= 0.0 && s2 <= 0.0))
+			d = fmin(d, h * h / nn);
+	}
+	return d;
+}
+
+// Cheap rejection: over [0, T] the quadratic path p(tau) = dp + dv tau + da tau^2 is a Bezier
+// curve inside the triangle of its control points P0, P0 + dv T / 2, P0 + dv T + da T^2 (in 3D:
+// airborne balls too); if that triangle stays farther than 2R from the origin, the balls
+// cannot touch. The margin 1e-9 (relative) covers the rounding of the control points.
 static int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
-	if (!isfinite(T) || dp.z != 0.0 || dv.z != 0.0 || da.z != 0.0)
+	if (!isfinite(T))
 		return 1;
-	double x0 = dp.x, y0 = dp.y;
-	double x1 = dp.x + 0.5 * T * dv.x, y1 = dp.y + 0.5 * T * dv.y;
-	double x2 = dp.x + T * dv.x + T * T * da.x, y2 = dp.y + T * dv.y + T * T * da.y;
-	double d2 = 4.0 * R * R * (1.0 + 1e-9);
-	// Origin inside the triangle: same sign of the three edge cross products.
-	double c0 = x0 * y1 - y0 * x1, c1 = x1 * y2 - y1 * x2, c2 = x2 * y0 - y2 * x0;
-	if ((c0 >= 0 && c1 >= 0 && c2 >= 0) || (c0 <= 0 && c1 <= 0 && c2 <= 0))
-		return 1;
-	return seg_dist2(x0, y0, x1, y1) <= d2 || seg_dist2(x1, y1, x2, y2) <= d2 ||
-	       seg_dist2(x2, y2, x0, y0) <= d2;
+	const pool_vec3 p1 = pool_v3_madd(dp, 0.5 * T, dv);
+	const pool_vec3 p2 = pool_v3_madd(pool_v3_madd(dp, T, dv), T * T, da);
+	const double d2 = 4.0 * R * R * (1.0 + 1e-9);
+	if (dp.z == 0.0 && p1.z == 0.0 && p2.z == 0.0) {
+		// In the plane (both balls on the cloth: the hot path): origin inside the triangle when
+		// the three edge cross products agree in sign, else the nearest edge.
+		const double c0 = dp.x * p1.y - dp.y * p1.x, c1 = p1.x * p2.y - p1.y * p2.x, c2 = p2.x * dp.y - p2.y * dp.x;
+		if ((c0 >= 0 && c1 >= 0 && c2 >= 0) || (c0 <= 0 && c1 <= 0 && c2 <= 0))
+			return 1;
+		return segment_dist2(dp, p1) <= d2 || segment_dist2(p1, p2) <= d2 || segment_dist2(p2, dp) <= d2;
+	}
+	return triangle_dist2(dp, p1, p2) <= d2;
 }
 
 double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
@@ -63,41 +85,13 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 	return pool_contact_next(&g, T);
 }
 
-pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along) {
-	const double L = table->length, W = table->width;
-	const double corner = table->corner_mouth / sqrt(2.0);
-	switch (rail) {
-	case POOL_RAIL_SOUTH:
-	case POOL_RAIL_NORTH: {
-		int north = rail == POOL_RAIL_NORTH;
-		if (along < corner)
-			return north ? POOL_POCKET_NW : POOL_POCKET_SW;
-		if (along > L - corner)
-			return north ? POOL_POCKET_NE : POOL_POCKET_SE;
-		if (fabs(along - 0.5 * L) < 0.5 * table->side_mouth)
-			return north ? POOL_POCKET_N : POOL_POCKET_S;
-		return POOL_POCKET_NONE;
-	}
-	case POOL_RAIL_WEST:
-	case POOL_RAIL_EAST: {
-		int east = rail == POOL_RAIL_EAST;
-		if (along < corner)
-			return east ? POOL_POCKET_SE : POOL_POCKET_SW;
-		if (along > W - corner)
-			return east ? POOL_POCKET_NE : POOL_POCKET_NW;
-		return POOL_POCKET_NONE;
-	}
-	default: return POOL_POCKET_NONE;
-	}
-}
-
-// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `target` coming from the side
-// where sign (target - x) > 0 (sign +1: increasing towards it); INFINITY when never.
-static double line_contact(double x0, double v, double a, double target, double sign, double T) {
+// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `line` coming from the side where
+// side (line - x) > 0 (side +1: increasing towards it); INFINITY when never.
+static double line_contact(double x0, double v, double a, double line, double side, double T) {
 	pool_contact_gap g;
-	g.gap = sign * (target - x0);
-	g.speed = sign * v;
-	g.accel = sign * a;
+	g.gap = side * (line - x0);
+	g.speed = side * v;
+	g.accel = side * a;
 	g.f[0] = g.gap;
 	g.f[1] = -g.speed;
 	g.f[2] = -0.5 * g.accel;
@@ -107,25 +101,25 @@ static double line_contact(double x0, double v, double a, double target, double 
 
 double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
                             pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket) {
-	const double dc = pool_cushion_contact_distance(R, table->cushion_height);
+	const double dc = pool_table_contact_distance(table, R);
 	double best = INFINITY;
 	pool_rail best_rail = POOL_RAIL_NONE;
-	const double tx[4] = {dc, table->width - dc, dc, table->length - dc};
 	for (int r = 0; r < 4; ++r) {
-		int along_x = r <= POOL_RAIL_NORTH;           // south / north rails: motion in y
-		double sign = (r == POOL_RAIL_NORTH || r == POOL_RAIL_EAST) ? 1.0 : -1.0;
-		double t = along_x ? line_contact(s->pos.y, s->vel.y, acc.y, tx[r], sign, T)
-		                   : line_contact(s->pos.x, s->vel.x, acc.x, tx[r], sign, T);
+		const pool_rail rr = (pool_rail)r;
+		const double line = pool_rail_contact_line(table, dc, rr), side = pool_rail_side(rr);
+		// South / north rails: the motion normal to them is in y.
+		const double t = pool_rail_along_x(rr) ? line_contact(s->pos.y, s->vel.y, acc.y, line, side, T)
+		                                       : line_contact(s->pos.x, s->vel.x, acc.x, line, side, T);
 		if (t < best) {
 			best = t;
-			best_rail = (pool_rail)r;
+			best_rail = rr;
 		}
 	}
 	*rail = best_rail;
 	*pocket = POOL_POCKET_NONE;
 	if (best_rail != POOL_RAIL_NONE) {
-		double along = best_rail <= POOL_RAIL_NORTH ? s->pos.x + best * s->vel.x + 0.5 * acc.x * best * best
-		                                            : s->pos.y + best * s->vel.y + 0.5 * acc.y * best * best;
+		const double along = pool_rail_along_x(best_rail) ? s->pos.x + best * s->vel.x + 0.5 * acc.x * best * best
+		                                                  : s->pos.y + best * s->vel.y + 0.5 * acc.y * best * best;
 		*pocket = pool_pocket_at(table, best_rail, along);
 	}
 	return best;

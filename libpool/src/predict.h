@@ -1,4 +1,5 @@
-// Event prediction: ball-ball contact (quartic), cushion and pocket contact (quadratics).
+// Event prediction: ball-ball contact (quartic), cushion and pocket contact (quadratics); the
+// pocket mouths and contact lines are in geometry.h.
 #ifndef POOL_PREDICT_H
 #define POOL_PREDICT_H
 
@@ -18,9 +19,5 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 /// falls inside a pocket mouth (else POOL_POCKET_NONE). INFINITY when none.
 double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
                             pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket);
-
-/// Pocket whose mouth contains a contact with `rail` at coordinate `along` (x on the south and
-/// north rails, y on the west and east rails), or POOL_POCKET_NONE.
-pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along);
 
 #endif

@@ -193,8 +193,7 @@ typedef struct hs_shot {
 } hs_shot;
 
 static inline double hs_dc(const pool_sim_def *def) {
-	const double R = def->params.ball_radius, d = def->table.cushion_height - R;
-	return sqrt(R * R - d * d); // the library's expression (collision.c), bit for bit
+	return pool_table_contact_distance(&def->table, def->params.ball_radius); // the library's, bit for bit
 }
 
 // Would pool_sim_add_ball accept a ball at pos (same expressions as sim.c)?

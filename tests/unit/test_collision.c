@@ -8,6 +8,7 @@
 #include <cmocka.h>
 
 #include "collision.h"
+#include "geometry.h"
 #include "motion.h"
 #include "pool/pool.h"
 #include "vec3.h"
@@ -174,7 +175,7 @@ static void test_cushion_geometry(void **state) {
 	const pool_params p = pool_default_params();
 	const pool_table_def t = pool_default_table_def();
 	const double R = p.ball_radius, h = t.cushion_height;
-	const double dc = pool_cushion_contact_distance(R, h);
+	const double dc = pool_table_contact_distance(&t, R);
 	// At that distance the centre is exactly R from the nose line (height h): the ball touches it.
 	near_rel(hypot(dc, h - R), R, 1e-15);
 	assert_true(dc < R); // the nose is above the centre: the ball reaches under it

@@ -64,7 +64,7 @@ static void sample(const pool_sim *sim, const pool_sim_def *def, double t, leak_
 	const int n = pool_sim_ball_count(sim);
 	assert_int_equal(pool_sim_state_at(sim, t, s), POOL_OK);
 	const double R = def->params.ball_radius, L = def->table.length, W = def->table.width;
-	const double dc = pool_cushion_contact_distance(R, def->table.cushion_height);
+	const double dc = pool_table_contact_distance(&def->table, R);
 	for (int i = 0; i < n; ++i) {
 		if (s[i].motion == POOL_MOTION_POCKETED)
 			continue;
@@ -110,7 +110,7 @@ static leak_report run_and_check(pool_sim *sim, const pool_sim_def *def) {
 			t0[i] = ev[e].time;
 			if (ev[e].type == POOL_EVENT_POCKET) {
 				// Pocketed where it met a rail line, not from outside the table.
-				const double R = p->ball_radius, dc = pool_cushion_contact_distance(R, def->table.cushion_height);
+				const double R = p->ball_radius, dc = pool_table_contact_distance(&def->table, R);
 				const double x = before.pos.x, y = before.pos.y;
 				const double out = fmax(fmax(dc - x, x - (def->table.length - dc)), fmax(dc - y, y - (def->table.width - dc)));
 				r.outside = fmax(r.outside, out);
@@ -164,7 +164,7 @@ static void test_rail_slow_separation(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
 	const double R = def.params.ball_radius, L = def.table.length, W = def.table.width;
-	const double dc = pool_cushion_contact_distance(R, def.table.cushion_height);
+	const double dc = pool_table_contact_distance(&def.table, R);
 	const double offsets[] = {0.0, 2e-16, -2e-16, 5e-10, -5e-10};
 	for (int rail = 0; rail < 4; ++rail)
 		for (size_t k = 0; k < sizeof offsets / sizeof offsets[0]; ++k)
@@ -208,7 +208,7 @@ static void test_rail_slow_separation_reproducer(void **state) {
 	assert_no_leak(&r, &def.params, "issue 9 reproducer 1");
 	pool_ball_state at;
 	assert_int_equal(pool_sim_state_at(sim, 0.6005, &at), POOL_OK);
-	assert_true(at.pos.y >= pool_cushion_contact_distance(def.params.ball_radius, def.table.cushion_height) - POOL_TOUCH_TOLERANCE);
+	assert_true(at.pos.y >= pool_table_contact_distance(&def.table, def.params.ball_radius) - POOL_TOUCH_TOLERANCE);
 	pool_sim_destroy(sim);
 }
 
@@ -270,7 +270,7 @@ static void test_frictionless_slow_drift(void **state) {
 	def.params.mu_slide = 0.0;
 	def.max_time = 100.0;
 	const double R = def.params.ball_radius, W = def.table.width;
-	const double dc = pool_cushion_contact_distance(R, def.table.cushion_height);
+	const double dc = pool_table_contact_distance(&def.table, R);
 	const double speeds[] = {1e-9, 3e-10, 2e-9};
 	for (size_t k = 0; k < sizeof speeds / sizeof speeds[0]; ++k) {
 		pool_sim *sim = make_sim(&def);
@@ -300,7 +300,7 @@ static void test_floor_energy_bound(void **state) {
 	def.params.mu_slide = 1.0;
 	def.params.g = 30.0;
 	const double R = def.params.ball_radius;
-	const double dc = pool_cushion_contact_distance(R, def.table.cushion_height);
+	const double dc = pool_table_contact_distance(&def.table, R);
 	pool_sim *sim = make_sim(&def);
 	pool_ball_state b = ball_at(0, 1.0, dc, R);
 	add(sim, &b);

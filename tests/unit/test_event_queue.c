@@ -25,10 +25,10 @@ static void test_order(void **state) {
 	b.kind = 1; // slide_roll before ball_ball at the same time
 	assert_int_equal(pool_event_key_cmp(&a, &b), 1);
 	b = a;
-	b.id_hi = 3;
+	b.order_hi = 3;
 	assert_int_equal(pool_event_key_cmp(&a, &b), -1);
 	b = a;
-	b.id_lo = 0;
+	b.order_lo = 0;
 	assert_int_equal(pool_event_key_cmp(&a, &b), 1);
 	b = a;
 	b.slot = 1;

@@ -8,6 +8,7 @@
 #include <cmocka.h>
 
 #include "pool/pool.h"
+#include "geometry.h"
 #include "predict.h"
 #include "vec3.h"
 

@@ -59,7 +59,7 @@ typedef struct shot {
 // struck with random speed (0.05-8 m/s), direction, elevation and tip offset.
 static void make_shot(const pool_sim_def *def, int index, shot *s) {
 	const double R = def->params.ball_radius;
-	const double dc = sqrt(R * R - (def->table.cushion_height - R) * (def->table.cushion_height - R));
+	const double dc = pool_table_contact_distance(&def->table, R);
 	if (index % 3 != 2) {
 		double gap = urand() < 0.5 ? 0.0 : urand() * 2e-3;
 		s->n = pool_rack(urand() < 0.7 ? POOL_RACK_8BALL : POOL_RACK_9BALL, &def->table, &def->params, gap, s->balls, 16);
@@ -111,7 +111,7 @@ typedef struct stats {
 // No two balls closer than 2R (to 1e-9 m), every ball inside the cushion contact lines.
 static void check_positions(const pool_sim_def *def, const pool_ball_state *b, int n, stats *st) {
 	const double R = def->params.ball_radius;
-	const double dc = sqrt(R * R - (def->table.cushion_height - R) * (def->table.cushion_height - R));
+	const double dc = pool_table_contact_distance(&def->table, R);
 	for (int i = 0; i < n; ++i) {
 		if (!active(&b[i]))
 			continue;

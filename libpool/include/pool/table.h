@@ -44,6 +44,11 @@ typedef struct pool_params {
 /// PHYSICS.md defaults.
 POOL_API pool_params pool_default_params(void);
 
+/// Horizontal distance (m) from a nose line at which a ball of radius R on the cloth touches it:
+/// sqrt(R^2 - (h - R)^2) (VALIDATION.md 8). The contact lines of the playing area are this far
+/// inside the nose lines.
+POOL_API double pool_table_contact_distance(const pool_table_def *table, double ball_radius);
+
 /// Checks ranges (positive sizes, non-negative friction, restitution in [0, 1], finite);
 /// the message names the field, e.g. "params.mu_slide: must be >= 0".
 POOL_API pool_result pool_table_def_validate(const pool_table_def *table, pool_error *error);

@@ -1,0 +1,33 @@
+// Ball-cushion and pocket events (PHYSICS.md "Ball–cushion", "Pocket"): Petit's law with the nose
+// as an immovable obstacle; a cushion contact inside a pocket mouth pockets the ball.
+#include <math.h>
+
+#include "collision.h"
+#include "contact_floor.h"
+#include "geometry.h"
+#include "handlers.h"
+#include "motion.h"
+#include "sim_internal.h"
+#include "vec3.h"
+
+int pool_handle_ball_cushion(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count) {
+	(void)type;
+	(void)count;
+	const pool_params *p = &ctx->def->params;
+	const pool_vec3 n = pool_cushion_normal(&ctx->def->table, s[0].pos, ctx->rail);
+	pool_collide(&s[0], p->ball_radius, p->ball_mass, NULL, p->ball_radius, 0.0, n, p->e_cushion, p->mu_cushion);
+	pool_planar_after_impulse(ctx->def, &s[0]);
+	pool_motion_derive(p, &s[0]);
+	const pool_vec3 nh = pool_v3_xy(n);
+	return pool_contact_floor(p, &s[0], NULL, pool_v3_scale(nh, 1.0 / pool_v3_len(nh))) ? POOL_EVENT_FLAG_FLOOR : 0;
+}
+
+int pool_handle_pocket(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count) {
+	(void)ctx;
+	(void)type;
+	(void)count;
+	s[0].vel = pool_v3(0.0, 0.0, 0.0);
+	s[0].omega = pool_v3(0.0, 0.0, 0.0);
+	s[0].motion = POOL_MOTION_POCKETED;
+	return 0;
+}

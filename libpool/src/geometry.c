@@ -1,0 +1,59 @@
+// Table geometry in one place (the rules are in geometry.h).
+#include "geometry.h"
+
+#include <math.h>
+
+#include "vec3.h"
+
+double pool_table_contact_distance(const pool_table_def *table, double ball_radius) {
+	if (!table)
+		return NAN;
+	const double d = table->cushion_height - ball_radius;
+	return sqrt(ball_radius * ball_radius - d * d);
+}
+
+double pool_outside_contact_lines(const pool_table_def *table, double dc, pool_vec3 pos) {
+	return fmax(fmax(dc - pos.x, pos.x - (table->length - dc)), fmax(dc - pos.y, pos.y - (table->width - dc)));
+}
+
+pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along) {
+	const double L = table->length, W = table->width;
+	const double corner = table->corner_mouth / sqrt(2.0);
+	switch (rail) {
+	case POOL_RAIL_SOUTH:
+	case POOL_RAIL_NORTH: {
+		int north = rail == POOL_RAIL_NORTH;
+		if (along < corner)
+			return north ? POOL_POCKET_NW : POOL_POCKET_SW;
+		if (along > L - corner)
+			return north ? POOL_POCKET_NE : POOL_POCKET_SE;
+		if (fabs(along - 0.5 * L) < 0.5 * table->side_mouth)
+			return north ? POOL_POCKET_N : POOL_POCKET_S;
+		return POOL_POCKET_NONE;
+	}
+	case POOL_RAIL_WEST:
+	case POOL_RAIL_EAST: {
+		int east = rail == POOL_RAIL_EAST;
+		if (along < corner)
+			return east ? POOL_POCKET_SE : POOL_POCKET_SW;
+		if (along > W - corner)
+			return east ? POOL_POCKET_NE : POOL_POCKET_NW;
+		return POOL_POCKET_NONE;
+	}
+	default: return POOL_POCKET_NONE;
+	}
+}
+
+pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail) {
+	pool_vec3 nose = pos; // nearest point of the nose line: same coordinate along the rail
+	nose.z = table->cushion_height;
+	switch (rail) {
+	case POOL_RAIL_SOUTH: nose.y = 0.0; break;
+	case POOL_RAIL_NORTH: nose.y = table->width; break;
+	case POOL_RAIL_WEST: nose.x = 0.0; break;
+	case POOL_RAIL_EAST: nose.x = table->length; break;
+	default: break;
+	}
+	pool_vec3 d = pool_v3_sub(pos, nose);
+	return pool_v3_scale(d, 1.0 / pool_v3_len(d));
+}

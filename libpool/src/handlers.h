@@ -1,0 +1,40 @@
+// Event handlers: one small function per event kind, each in the file of its physics (world.h
+// lists them). A handler turns the involved balls' states at the event instant into their
+// after-states; the world records them and the schedule re-predicts.
+#ifndef POOL_HANDLERS_H
+#define POOL_HANDLERS_H
+
+#include "pool/sim.h"
+
+/// What a handler knows of the event besides the states.
+typedef struct pool_event_context {
+	const pool_sim_def *def; ///< table, parameters, planar or airborne
+	pool_rail rail;          ///< the rail of a cushion event
+	pool_pocket pocket;      ///< the pocket of a pocket event
+} pool_event_context;
+
+/// Applies event `type` to the states s[0..count) of its balls, evolved to its instant (for two
+/// balls, s[0] has the smaller id). Returns POOL_EVENT_FLAG_* bits (sim_internal.h).
+typedef int (*pool_event_handler)(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s,
+                                  int count);
+
+/// The handler of an event kind handled by the schedule (not the strike, which is an API call),
+/// or NULL.
+pool_event_handler pool_event_handler_for(pool_event_type type);
+
+/// slide_roll, roll_stop, spin_stop (motion.c).
+int pool_handle_state_change(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
+/// Two balls (ball_ball.c).
+int pool_handle_ball_ball(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
+/// A ball and a cushion nose (cushion.c).
+int pool_handle_ball_cushion(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
+/// A ball into a pocket (cushion.c: a cushion contact inside a mouth).
+int pool_handle_pocket(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
+
+/// Planar mode drops v_z after every impulse (PHYSICS.md "Collisions"); airborne mode keeps it.
+static inline void pool_planar_after_impulse(const pool_sim_def *def, pool_ball_state *s) {
+	if (!def->airborne)
+		s->vel.z = 0.0;
+}
+
+#endif

@@ -1,0 +1,112 @@
+// The schedule (schedule.h). Every body owns one slot of an indexed min-heap holding its next
+// predicted event: the earliest of its own events, computed once when its segment starts, and
+// its earliest contact with another body. A contact is searched only up to the earlier of the
+// two bodies' own next events, since either changes trajectory there and is re-predicted then.
+#include "schedule.h"
+
+#include <math.h>
+
+#include "predict.h"
+#include "vec3.h"
+
+void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
+	const pool_params *p = &sim->def.params;
+	pool_body *b = &sim->body[i];
+	sim->cur[i] = *s;
+	pool_segment_begin(&b->seg, p, s, t);
+	b->own_time = INFINITY;
+	b->own_kind = POOL_EVENT_SPIN_STOP;
+	b->own_rail = POOL_RAIL_NONE;
+	b->own_pocket = POOL_POCKET_NONE;
+	if (!b->active || !b->seg.model->on_cloth)
+		return;
+	pool_event_type kind;
+	double dt = pool_segment_next_change(&b->seg, &kind);
+	if (b->seg.model->translating) {
+		pool_rail rail;
+		pool_pocket pocket;
+		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, dt, &rail, &pocket);
+		// A state change at the same instant goes first (its kind orders first).
+		if (tc < dt) {
+			dt = tc;
+			kind = pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
+			b->own_rail = rail;
+			b->own_pocket = pocket;
+		}
+	}
+	b->own_time = t + dt;
+	b->own_kind = kind;
+}
+
+// Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
+static void repredict(pool_sim *sim, int i, double now) {
+	const pool_params *p = &sim->def.params;
+	pool_body *bi = &sim->body[i];
+	pool_event_key best = {INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
+	bi->partner = -1;
+	if (bi->active) {
+		best.time = bi->own_time;
+		best.kind = (int)bi->own_kind;
+		// Both paths as polynomials in (t - now), from the segments' own polynomial.
+		pool_vec3 pi, vi;
+		pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
+		const pool_vec3 ai = bi->seg.acc;
+		const int mi = bi->seg.model->translating;
+		const double horizon_i = fmin(bi->own_time, sim->def.max_time);
+		for (int j = 0; j < sim->n; ++j) {
+			const pool_body *bj = &sim->body[j];
+			if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
+				continue;
+			// A contact after the best event so far cannot be the earliest: shrink the window.
+			const double T = fmin(fmin(horizon_i, bj->own_time), best.time) - now;
+			if (!(T >= 0.0))
+				continue;
+			pool_vec3 pj, vj;
+			pool_segment_path(&bj->seg, now - bj->seg.t0, &pj, &vj);
+			// Same operand order whichever body predicts, so both get the same time.
+			pool_vec3 dp = pool_v3_sub(pi, pj), dv = pool_v3_sub(vi, vj), da = pool_v3_scale(pool_v3_sub(ai, bj->seg.acc), 0.5);
+			if (j < i) {
+				dp = pool_v3_scale(dp, -1.0);
+				dv = pool_v3_scale(dv, -1.0);
+				da = pool_v3_scale(da, -1.0);
+			}
+			const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
+			if (!(tau <= T))
+				continue;
+			const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
+			const pool_event_key k = {now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
+			if (pool_event_key_cmp(&k, &best) < 0) {
+				best = k;
+				bi->partner = j;
+			}
+		}
+	}
+	pool_event_queue_update(&sim->queue, i, &best);
+}
+
+void pool_schedule_predict_all(pool_sim *sim) {
+	sim->queue.keys = sim->keys;
+	sim->queue.heap = sim->heap;
+	sim->queue.pos = sim->hpos;
+	for (int i = 0; i < sim->n; ++i) {
+		sim->keys[i] = (pool_event_key){INFINITY, 0, sim->cur[i].id, sim->cur[i].id, i};
+		sim->body[i].partner = -1;
+	}
+	pool_event_queue_build(&sim->queue, sim->n);
+	for (int i = 0; i < sim->n; ++i)
+		repredict(sim, i, sim->time);
+	sim->predicted = 1;
+}
+
+void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now) {
+	int count = 0;
+	for (int x = 0; x < sim->n; ++x) {
+		int hit = 0;
+		for (int k = 0; k < m; ++k)
+			hit |= x == inv[k] || sim->body[x].partner == inv[k];
+		if (hit)
+			sim->work[count++] = x;
+	}
+	for (int k = 0; k < count; ++k)
+		repredict(sim, sim->work[k], now);
+}

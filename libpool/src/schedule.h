@@ -1,0 +1,22 @@
+// The schedule: each body's next event in the heap (PHYSICS.md "Event list"). After an event
+// only the bodies it involved, and those whose pending event involved them, are re-predicted.
+#ifndef POOL_SCHEDULE_H
+#define POOL_SCHEDULE_H
+
+#include "world.h"
+
+/// Starts body i's new motion segment at time t in state s and predicts its own next event
+/// (state change, cushion, pocket), which needs no other body.
+void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t);
+
+/// Predicts every body's next event at sim->time and builds the heap.
+void pool_schedule_predict_all(pool_sim *sim);
+
+/// After an event of the bodies inv[0..m) at time now: re-predicts them and every body whose
+/// pending event involved one of them.
+void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now);
+
+/// Slot of the earliest pending event (sim->n > 0).
+static inline int pool_schedule_next(const pool_sim *sim) { return pool_event_queue_top(&sim->queue); }
+
+#endif

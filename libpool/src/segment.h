@@ -1,0 +1,69 @@
+// Motion segments: between two of its events a ball follows one closed-form motion (PHYSICS.md
+// "Motion between events"). One model per motion state gives the segment's acceleration, its
+// own end (the state change it leads to) and its spin; the centre follows one polynomial,
+//     r(tau) = r0 + v0 tau + a tau^2 / 2,   v(tau) = v0 + a tau,
+// which is used both to predict contacts and to evaluate states, so the two can never round
+// differently.
+#ifndef POOL_SEGMENT_H
+#define POOL_SEGMENT_H
+
+#include "pool/ball.h"
+#include "pool/event.h"
+#include "pool/table.h"
+#include "vec3.h"
+
+/// One motion state's closed forms.
+typedef struct pool_segment_model {
+	int translating; ///< the centre moves (sliding, rolling, airborne)
+	int on_cloth;    ///< cloth friction acts: z-spin decays, the state can change by itself
+	/// m/s^2, acceleration of the centre, constant over the segment.
+	pool_vec3 (*accel)(const pool_params *p, const pool_ball_state *s);
+	/// s, duration of the translation until its own state change (slide_roll, roll_stop), and
+	/// its kind; INFINITY when none.
+	double (*move_end)(const pool_params *p, const pool_ball_state *s, pool_event_type *kind);
+	/// Spin perpendicular to z at tau into the segment, velocity vel then (z-spin aside).
+	void (*spin)(const pool_params *p, const pool_ball_state *s0, double tau, pool_vec3 vel, pool_vec3 *omega);
+} pool_segment_model;
+
+/// The model of a motion state (stationary, spinning, sliding, rolling, airborne; a pocketed,
+/// off-table or linked ball gets the stationary model: nothing moves by itself).
+const pool_segment_model *pool_segment_model_of(pool_motion motion);
+
+/// A segment: its start state and time and what its model makes of them.
+typedef struct pool_segment {
+	pool_ball_state start;      ///< state at the start
+	double t0;                  ///< s, absolute start time
+	pool_vec3 acc;              ///< m/s^2, centre acceleration over the segment
+	double move_end;            ///< s after t0 of the translation's own change (INFINITY: none)
+	pool_event_type move_kind;  ///< slide_roll or roll_stop
+	double spin_end;            ///< s after t0 when the z-spin stops (INFINITY: none)
+	const pool_segment_model *model;
+} pool_segment;
+
+/// Starts a segment in state s at absolute time t0.
+void pool_segment_begin(pool_segment *seg, const pool_params *p, const pool_ball_state *s, double t0);
+
+/// Duration until the segment's own next state change (slide_roll, roll_stop or spin_stop,
+/// whichever comes first, ties in that order) and its kind; INFINITY and no kind when none.
+double pool_segment_next_change(const pool_segment *seg, pool_event_type *kind);
+
+/// Centre position and velocity tau >= 0 after the start: the segment's one polynomial (tau is
+/// clamped at the translation's own end, where the motion stops changing that way). Inline: the
+/// schedule evaluates it for every pair it predicts.
+static inline void pool_segment_path(const pool_segment *seg, double tau, pool_vec3 *pos, pool_vec3 *vel) {
+	const pool_ball_state *s = &seg->start;
+	if (!(tau > 0.0) || !seg->model->translating) {
+		*pos = s->pos;
+		*vel = s->vel;
+		return;
+	}
+	const double t = tau < seg->move_end ? tau : seg->move_end;
+	*pos = pool_v3_madd(pool_v3_madd(s->pos, t, s->vel), 0.5 * t * t, seg->acc);
+	*vel = pool_v3_madd(s->vel, t, seg->acc);
+}
+
+/// The whole state tau >= 0 after the start, in closed form (every component clamped at its
+/// own end time, so any tau is safe).
+void pool_segment_state(const pool_segment *seg, const pool_params *p, double tau, pool_ball_state *out);
+
+#endif

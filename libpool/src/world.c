@@ -1,0 +1,489 @@
+// The world: storage, the shot's history and the public API of pool/sim.h (world.h says how the
+// simulation is split). Events are processed in the schedule's order, one at a time; each is
+// applied by its kind's handler and the bodies it involved start new segments.
+//
+// Simultaneous and touching contacts. Events at the same instant are processed one at a time in
+// the heap's total order (time, kind, body order ids, slot). Whether touching bodies collide
+// "now" is decided by the one rule of contact.h; an impulse reverses the pair's normal velocity
+// (times e), so the pair is then separating and is not found again at this instant, while its
+// neighbours, now pushed, are. A frozen rack is thus resolved by sequential pairwise impulses.
+// Termination: every such same-instant collision removes a positive share (1 - e^2 and friction)
+// of the pair's approach energy and needs an approach speed above POOL_APPROACH_EPS, so the chain
+// is finite for e < 1; for e = 1 and every other pathological input, max_events ends the shot
+// (POOL_STOP_MAX_EVENTS). Finite is not small: with low restitution a line of touching balls is
+// the inelastic collapse of granular gases (McNamara & Young 1992), and sequential impulses
+// converge only geometrically, slower as e falls (a 7-ball line takes 28 collisions at e = 0.5 but
+// 8,905 at e = 0.2, docs/measurements.md). LINK will solve such a cluster as one LCP; until then
+// max_events bounds the cost. Persistent (pushing) contact: contact_floor.h.
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact.h"
+#include "error.h"
+#include "handlers.h"
+#include "motion.h"
+#include "pool/sim.h"
+#include "schedule.h"
+#include "sim_internal.h"
+#include "vec3.h"
+#include "world.h"
+
+static void *default_alloc(size_t size, void *context) {
+	(void)context;
+	return malloc(size);
+}
+static void default_free(void *memory, void *context) {
+	(void)context;
+	free(memory);
+}
+
+static void *mem_alloc(const pool_allocator *a, size_t size) { return a->alloc(size ? size : 1, a->context); }
+static void mem_free(const pool_allocator *a, void *p) {
+	if (p)
+		a->free(p, a->context);
+}
+
+pool_sim_def pool_default_sim_def(void) {
+	pool_sim_def def;
+	memset(&def, 0, sizeof def);
+	def.table = pool_default_table_def();
+	def.params = pool_default_params();
+	def.airborne = false;
+	def.max_time = 120.0;
+	def.max_events = 100000;
+	return def;
+}
+
+static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
+	pool_result r;
+	if (!def)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "def: missing");
+	if ((r = pool_table_def_validate(&def->table, error)) || (r = pool_params_validate(&def->params, error)))
+		return r;
+	const double R = def->params.ball_radius;
+	if (!(def->table.cushion_height < 2.0 * R))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "table.cushion_height: must be < 2 params.ball_radius (%g m)", 2.0 * R);
+	if (!(def->table.length > 2.0 * R && def->table.width > 2.0 * R))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "table.width: must be > 2 params.ball_radius");
+	if (def->airborne)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "options.airborne: airborne motion not implemented yet");
+	if (isnan(def->max_time) || !(def->max_time > 0.0))
+		return pool_error_set(error, isnan(def->max_time) ? POOL_ERR_NON_FINITE : POOL_ERR_INVALID_ARGUMENT,
+		                      "options.max_time: must be > 0");
+	if (def->max_events <= 0)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "options.max_events: must be > 0");
+	if ((def->allocator.alloc == NULL) != (def->allocator.free == NULL))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "allocator: alloc and free must both be set");
+	return pool_error_ok(error);
+}
+
+static void clear(pool_sim *sim) {
+	sim->n = 0;
+	sim->n_events = 0;
+	sim->n_states = 0;
+	sim->time = 0.0;
+	sim->processed = 0.0;
+	sim->stop = POOL_STOP_NONE;
+	sim->predicted = 0;
+	sim->started = 0;
+}
+
+static void set_def(pool_sim *sim, const pool_sim_def *def) {
+	pool_allocator keep = sim->alloc;
+	sim->def = *def;
+	sim->def.allocator = keep; // buffers stay with the allocator that made them
+	sim->dc = pool_table_contact_distance(&def->table, def->params.ball_radius);
+}
+
+pool_result pool_sim_create(const pool_sim_def *def, pool_sim **out, pool_error *error) {
+	if (!out)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "sim: missing output pointer");
+	*out = NULL;
+	pool_result r = validate_def(def, error);
+	if (r)
+		return r;
+	pool_allocator a = def->allocator;
+	if (!a.alloc) {
+		a.alloc = default_alloc;
+		a.free = default_free;
+		a.context = NULL;
+	}
+	pool_sim *sim = mem_alloc(&a, sizeof *sim);
+	if (!sim)
+		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "sim: out of memory");
+	memset(sim, 0, sizeof *sim);
+	sim->alloc = a;
+	set_def(sim, def);
+	clear(sim);
+	*out = sim;
+	return pool_error_ok(error);
+}
+
+void pool_sim_destroy(pool_sim *sim) {
+	if (!sim)
+		return;
+	const pool_allocator a = sim->alloc;
+	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work,
+	                  sim->events, sim->event_flags, sim->states, sim->state_time, sim->state_prev};
+	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
+		mem_free(&a, arrays[i]);
+	mem_free(&a, sim);
+}
+
+pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *error) {
+	if (!sim)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "sim: missing");
+	if (def) {
+		pool_result r = validate_def(def, error);
+		if (r)
+			return r;
+		set_def(sim, def);
+	}
+	clear(sim);
+	return pool_error_ok(error);
+}
+
+// Replaces *arrays[i] (each elems[i] bytes per element, `used` of them live) by arrays of
+// new_cap elements; all or nothing, so a failed allocation leaves the simulation intact.
+static pool_result grow_arrays(pool_sim *sim, void **arrays[], const size_t elems[], int count, int used, int new_cap) {
+	void *fresh[12];
+	for (int i = 0; i < count; ++i) {
+		fresh[i] = mem_alloc(&sim->alloc, elems[i] * (size_t)new_cap);
+		if (!fresh[i]) {
+			for (int j = 0; j < i; ++j)
+				mem_free(&sim->alloc, fresh[j]);
+			return POOL_ERR_OUT_OF_MEMORY;
+		}
+	}
+	for (int i = 0; i < count; ++i) {
+		if (*arrays[i] && used > 0)
+			memcpy(fresh[i], *arrays[i], elems[i] * (size_t)used);
+		mem_free(&sim->alloc, *arrays[i]);
+		*arrays[i] = fresh[i];
+	}
+	return POOL_OK;
+}
+
+static int next_cap(int cap, int need) {
+	int c = cap > 0 ? cap : 16;
+	while (c < need)
+		c *= 2;
+	return c;
+}
+
+static pool_result reserve_balls(pool_sim *sim, int need) {
+	if (need <= sim->cap_balls)
+		return POOL_OK;
+	int cap = next_cap(sim->cap_balls, need);
+	void **arrays[] = {(void **)&sim->cur, (void **)&sim->body, (void **)&sim->keys,
+	                   (void **)&sim->heap, (void **)&sim->hpos, (void **)&sim->work};
+	const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body), sizeof(pool_event_key),
+	                        sizeof(int), sizeof(int), sizeof(int)};
+	pool_result r = grow_arrays(sim, arrays, elems, 6, sim->n, cap);
+	if (r == POOL_OK)
+		sim->cap_balls = cap;
+	return r;
+}
+
+static pool_result reserve_history(pool_sim *sim, int events, int states) {
+	if (sim->n_events + events > sim->cap_events) {
+		int cap = next_cap(sim->cap_events, sim->n_events + events);
+		void **arrays[] = {(void **)&sim->events, (void **)&sim->event_flags};
+		const size_t elems[] = {sizeof(pool_event), 1};
+		if (grow_arrays(sim, arrays, elems, 2, sim->n_events, cap))
+			return POOL_ERR_OUT_OF_MEMORY;
+		sim->cap_events = cap;
+	}
+	if (sim->n_states + states > sim->cap_states) {
+		int cap = next_cap(sim->cap_states, sim->n_states + states);
+		void **arrays[] = {(void **)&sim->states, (void **)&sim->state_time, (void **)&sim->state_prev};
+		const size_t elems[] = {sizeof(pool_ball_state), sizeof(double), sizeof(int)};
+		if (grow_arrays(sim, arrays, elems, 3, sim->n_states, cap))
+			return POOL_ERR_OUT_OF_MEMORY;
+		sim->cap_states = cap;
+	}
+	return POOL_OK;
+}
+
+static void record_state(pool_sim *sim, int i, double t) {
+	int k = sim->n_states++;
+	sim->states[k] = sim->cur[i];
+	sim->state_time[k] = t;
+	sim->state_prev[k] = sim->body[i].hist;
+	sim->body[i].hist = k;
+}
+
+// Ball i's state at time t (within its current segment), in closed form from the segment start.
+static void state_now(const pool_sim *sim, int i, double t, pool_ball_state *out) {
+	const pool_segment *seg = &sim->body[i].seg;
+	pool_segment_state(seg, &sim->def.params, t - seg->t0, out);
+}
+
+static int find_ball(const pool_sim *sim, int32_t id) {
+	for (int i = 0; i < sim->n; ++i)
+		if (sim->cur[i].id == id)
+			return i;
+	return -1;
+}
+
+pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_error *error) {
+	if (!sim || !ball)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "balls: missing argument");
+	const int idx = sim->n;
+	if (sim->started)
+		return pool_error_set(error, POOL_ERR_STATE, "balls[%d]: balls can only be added before the shot starts", idx);
+	if (!pool_v3_finite(ball->pos))
+		return pool_error_set(error, POOL_ERR_NON_FINITE, "balls[%d].pos: must be finite", idx);
+	if (!pool_v3_finite(ball->vel))
+		return pool_error_set(error, POOL_ERR_NON_FINITE, "balls[%d].vel: must be finite", idx);
+	if (!pool_v3_finite(ball->omega))
+		return pool_error_set(error, POOL_ERR_NON_FINITE, "balls[%d].omega: must be finite", idx);
+	const double R = sim->def.params.ball_radius;
+	if (pool_v3_len(ball->vel) > POOL_MAX_SPEED)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "balls[%d].vel: speed above the %g m/s limit (POOL_MAX_SPEED)",
+		                      idx, POOL_MAX_SPEED);
+	if (pool_v3_len(ball->omega) * R > POOL_MAX_SPEED)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "balls[%d].omega: spin surface speed |omega| R above the %g m/s limit (POOL_MAX_SPEED)", idx,
+		                      POOL_MAX_SPEED);
+	int dup = find_ball(sim, ball->id);
+	if (dup >= 0)
+		return pool_error_set(error, POOL_ERR_DUPLICATE_ID, "balls[%d].id: duplicate id %d", idx, (int)ball->id);
+	const double L = sim->def.table.length, W = sim->def.table.width;
+	const double tol = POOL_TOUCH_TOLERANCE;
+	if (pool_world_planar(sim)) {
+		if (fabs(ball->pos.z - R) > tol)
+			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+			                      "balls[%d].pos: z must be the ball radius (%g m): airborne motion not implemented yet", idx, R);
+		// Dropping a vertical velocity silently would simulate another shot than the caller asked for.
+		if (fabs(ball->vel.z) > POOL_APPROACH_EPS)
+			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+			                      "balls[%d].vel: vertical velocity %g m/s needs airborne motion, not implemented yet",
+			                      idx, ball->vel.z);
+	} else if (!(ball->pos.z >= R - tol)) {
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "balls[%d].pos: z below the ball radius (%g m): under the cloth",
+		                      idx, R);
+	}
+	const double x = ball->pos.x, y = ball->pos.y;
+	if (x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol)
+		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
+	for (int j = 0; j < sim->n; ++j) {
+		double d = pool_v3_len(pool_v3_sub(ball->pos, sim->cur[j].pos));
+		if (d < 2.0 * R - tol)
+			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
+			                      (int)sim->cur[j].id, 2.0 * R - d);
+	}
+	if (reserve_balls(sim, idx + 1) || reserve_history(sim, 0, 1))
+		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "balls[%d]: out of memory", idx);
+	pool_ball_state s = *ball;
+	if (pool_world_planar(sim)) {
+		s.pos.z = R;
+		s.vel.z = 0.0; // no vertical velocity (at most POOL_APPROACH_EPS was given)
+	}
+	s.motion = POOL_MOTION_STATIONARY;
+	pool_motion_derive(&sim->def.params, &s);
+	sim->n++;
+	pool_body *b = &sim->body[idx];
+	memset(b, 0, sizeof *b);
+	b->active = 1;
+	b->hist = -1;
+	b->partner = -1;
+	pool_schedule_begin_segment(sim, idx, &s, sim->time);
+	record_state(sim, idx, sim->time);
+	sim->predicted = 0;
+	return pool_error_ok(error);
+}
+
+static void push_event(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
+                       const int *inv, int m) {
+	sim->event_flags[sim->n_events] = 0;
+	pool_event *e = &sim->events[sim->n_events++];
+	memset(e, 0, sizeof *e); // padding too: event lists compare bit for bit
+	e->time = t;
+	e->type = type;
+	e->rail = rail;
+	e->pocket = pocket;
+	e->ball_count = m;
+	e->first_state = sim->n_states;
+	for (int k = 0; k < m; ++k)
+		record_state(sim, inv[k], t);
+}
+
+pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *strike, pool_error *error) {
+	if (!sim || !strike)
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "strike: missing argument");
+	int i = find_ball(sim, ball_id);
+	if (i < 0)
+		return pool_error_set(error, POOL_ERR_UNKNOWN_BALL, "strike.ball: no ball has id %d", (int)ball_id);
+	pool_vec3 v, w;
+	pool_result r = pool_strike_velocities(&sim->def.params, strike, &v, &w, error);
+	if (r)
+		return r;
+	const double now = isfinite(sim->processed) ? fmax(sim->processed, sim->time) : sim->time;
+	pool_ball_state s;
+	state_now(sim, i, now, &s);
+	if (!sim->body[i].active || (s.motion != POOL_MOTION_STATIONARY && s.motion != POOL_MOTION_SPINNING))
+		return pool_error_set(error, POOL_ERR_STATE, "strike.ball: ball %d is not at rest on the cloth", (int)ball_id);
+	if (reserve_history(sim, 1, 1))
+		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "strike: out of memory");
+	s.vel = v;
+	pool_planar_after_impulse(&sim->def, &s); // planar mode drops the vertical component
+	s.omega = pool_v3_add(s.omega, w);
+	pool_motion_derive(&sim->def.params, &s);
+	pool_schedule_begin_segment(sim, i, &s, now);
+	push_event(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, &i, 1);
+	sim->time = now;
+	sim->processed = now;
+	sim->started = 1;
+	sim->stop = POOL_STOP_NONE;
+	if (sim->predicted)
+		pool_schedule_after_event(sim, &i, 1, now);
+	return pool_error_ok(error);
+}
+
+// Applies the event in slot `slot` (its key is the queue's minimum) at its time.
+static void process(pool_sim *sim, int slot) {
+	const pool_event_key key = sim->keys[slot];
+	const double now = key.time;
+	pool_body *b = &sim->body[slot];
+	const pool_event_type type = (pool_event_type)key.kind;
+	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE};
+	if (type == POOL_EVENT_BALL_CUSHION || type == POOL_EVENT_POCKET)
+		ctx.rail = b->own_rail;
+	if (type == POOL_EVENT_POCKET)
+		ctx.pocket = b->own_pocket;
+	int inv[2] = {slot, -1}, count = 1;
+	if (type == POOL_EVENT_BALL_BALL) {
+		// Body 1 is the ball with the smaller id, so the event reads the same from both slots.
+		const int j = b->partner;
+		if (sim->cur[j].id < sim->cur[slot].id) {
+			inv[0] = j;
+			inv[1] = slot;
+		} else {
+			inv[1] = j;
+		}
+		count = 2;
+	}
+	pool_ball_state s[2];
+	for (int k = 0; k < count; ++k)
+		state_now(sim, inv[k], now, &s[k]);
+	const pool_event_handler handle = pool_event_handler_for(type);
+	const int flags = handle ? handle(&ctx, type, s, count) : 0;
+	if (s[0].motion == POOL_MOTION_POCKETED || s[0].motion == POOL_MOTION_OFF_TABLE)
+		b->active = 0;
+	for (int k = 0; k < count; ++k)
+		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
+	// A pocket event names its pocket, not the rail whose mouth it was.
+	push_event(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
+	sim->event_flags[sim->n_events - 1] |= (unsigned char)flags;
+	sim->time = now;
+	sim->processed = now;
+	pool_schedule_after_event(sim, inv, count, now);
+}
+
+int pool_sim_step(pool_sim *sim) {
+	if (!sim)
+		return POOL_ERR_INVALID_ARGUMENT;
+	if (sim->stop != POOL_STOP_NONE)
+		return 0;
+	if (!sim->predicted)
+		pool_schedule_predict_all(sim);
+	const pool_event_key *top = sim->n > 0 ? &sim->keys[pool_event_queue_top(&sim->queue)] : NULL;
+	if (!top || !isfinite(top->time)) {
+		sim->stop = POOL_STOP_REST;
+		sim->processed = INFINITY;
+		return 0;
+	}
+	// The time limit first: when the next event lies beyond max_time the event limit cut nothing,
+	// and the shot is the one cut at max_time (its states known up to max_time).
+	if (top->time > sim->def.max_time) {
+		sim->stop = POOL_STOP_MAX_TIME;
+		sim->processed = fmax(sim->processed, sim->def.max_time);
+		return 0;
+	}
+	if (sim->n_events >= sim->def.max_events) {
+		sim->stop = POOL_STOP_MAX_EVENTS;
+		return 0;
+	}
+	if (reserve_history(sim, 1, 2))
+		return POOL_ERR_OUT_OF_MEMORY;
+	sim->started = 1;
+	process(sim, pool_event_queue_top(&sim->queue));
+	return 1;
+}
+
+pool_result pool_sim_run(pool_sim *sim) {
+	int r;
+	while ((r = pool_sim_step(sim)) > 0) {
+	}
+	return r < 0 ? (pool_result)r : POOL_OK;
+}
+
+pool_result pool_sim_run_until(pool_sim *sim, double t) {
+	if (!sim || isnan(t))
+		return POOL_ERR_INVALID_ARGUMENT;
+	for (;;) {
+		if (sim->stop != POOL_STOP_NONE)
+			return POOL_OK;
+		if (!sim->predicted)
+			pool_schedule_predict_all(sim);
+		if (sim->n > 0 && sim->keys[pool_event_queue_top(&sim->queue)].time > t &&
+		    isfinite(sim->keys[pool_event_queue_top(&sim->queue)].time) &&
+		    sim->keys[pool_event_queue_top(&sim->queue)].time <= sim->def.max_time)
+			break;
+		int r = pool_sim_step(sim);
+		if (r < 0)
+			return (pool_result)r;
+		if (r == 0)
+			return POOL_OK;
+	}
+	if (t > sim->processed)
+		sim->processed = t;
+	return POOL_OK;
+}
+
+pool_stop_reason pool_sim_stop_reason(const pool_sim *sim) { return sim ? sim->stop : POOL_STOP_NONE; }
+
+double pool_sim_time(const pool_sim *sim) { return sim ? sim->time : 0.0; }
+
+double pool_sim_end_time(const pool_sim *sim) {
+	if (!sim)
+		return 0.0;
+	return sim->stop == POOL_STOP_MAX_TIME ? fmax(sim->time, sim->def.max_time) : sim->time;
+}
+
+int pool_sim_ball_count(const pool_sim *sim) { return sim ? sim->n : 0; }
+
+const pool_ball_state *pool_sim_balls(const pool_sim *sim) { return sim ? sim->cur : NULL; }
+
+pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out) {
+	if (!sim || !out || isnan(t) || t < 0.0)
+		return POOL_ERR_INVALID_ARGUMENT;
+	if (t > sim->processed)
+		return POOL_ERR_STATE;
+	for (int i = 0; i < sim->n; ++i) {
+		int k = sim->body[i].hist;
+		while (sim->state_time[k] > t && sim->state_prev[k] >= 0)
+			k = sim->state_prev[k];
+		pool_motion_evolve(&sim->def.params, &sim->states[k], t - sim->state_time[k], &out[i]);
+	}
+	return POOL_OK;
+}
+
+const pool_event *pool_sim_events(const pool_sim *sim, int *count) {
+	if (count)
+		*count = sim ? sim->n_events : 0;
+	return sim ? sim->events : NULL;
+}
+
+const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_event *event) {
+	if (!sim || !event || event->first_state < 0 || event->first_state >= sim->n_states)
+		return NULL;
+	return &sim->states[event->first_state];
+}
+
+int pool_sim_event_flags(const pool_sim *sim, int index) {
+	return sim && index >= 0 && index < sim->n_events ? sim->event_flags[index] : 0;
+}
