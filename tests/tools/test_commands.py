@@ -730,6 +730,9 @@ class TestRack(unittest.TestCase, ResultChecks):
             self.assertEqual(len(json.load(f)["balls"]), 10)
 
 
+# The last pool-plot before the airborne side panel: without airborne data the picture must stay
+# its very bytes (test_planar_picture_unchanged).
+PLANAR_REFERENCE = "5f22ca5680a467e16404b488c3d1048a9fea3ce0"
 TABLE_9FT = {"length": 2.54, "width": 1.27, "cushion_height": 0.03629, "corner_mouth": 0.1143,
              "side_mouth": 0.127}
 
@@ -987,6 +990,173 @@ class TestPlot(unittest.TestCase):
         self.assertEqual(r.returncode, 0)
         self.assertIn(b"usage", r.stdout)
         self.assertIn(b"--max-input", r.stdout)
+
+    def svg_of(self, result, name):
+        out = os.path.join(ARGS.work, name)
+        r = self.plot(result, "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out, encoding="utf-8") as f:
+            return f.read()
+
+    @needs_matplotlib
+    def test_airborne_png_and_svg(self):
+        # A jump over a ball and a ball leaving the table: a second axes below the table view,
+        # the heights against time; dashed flights with their greatest height; landings and the
+        # ball off the table marked. Deterministic, PNG and SVG.
+        result = write("airborne.json", json.dumps(airborne_result()))
+        out = os.path.join(ARGS.work, "airborne.png")
+        r = self.plot(result, "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out, "rb") as f:
+            data = f.read()
+        self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n")
+        width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+        self.assertGreater(width, 1000)
+        self.assertLess(width / height, 1.3, "the panel below makes the picture taller")
+        self.assertEqual(self.plot(result, "-o", out).returncode, 0)
+        with open(out, "rb") as f:
+            self.assertEqual(f.read(), data, "the same result must give the same picture")
+        svg = self.svg_of(result, "airborne.svg")
+        self.assertTrue(svg == self.svg_of(result, "airborne.svg"), "the same SVG twice")
+        self.assertTrue('id="axes_2"' in svg, "the side panel")
+        self.assertFalse('id="axes_3"' in svg)
+        for text in ("height above cloth (cm)", "time (s)", "ball 0", "ball 2",
+                     "landing (ball_table)", "left the table", "ball 2 off the table",
+                     "airborne (tag: greatest height)", "off table: 2", "pocketed: none",
+                     "15.1 cm", "3.8 cm", "5.9 cm", "top of a ball on the cloth (2R)"):
+            self.assertTrue(text in svg, text)
+        self.assertFalse("<!-- ball 1 -->" in svg, "ball 1 never leaves the cloth")
+
+    @needs_matplotlib
+    def test_airborne_without_samples(self):
+        # Only events: the heights are parabolas from the events' velocities, and the flight's
+        # top is still written in the table view.
+        doc = airborne_result()
+        del doc["samples"]
+        svg = self.svg_of(write("airborne_events.json", json.dumps(doc)), "airborne_events.svg")
+        for text in ("height above cloth (cm)", "15.1 cm", "3.8 cm",
+                     "flights from the events' velocities"):
+            self.assertTrue(text in svg, text)
+
+    @needs_matplotlib
+    def test_off_table_balls(self):
+        # A ball off the table is not drawn as a ball at rest: it is listed in the title, marked
+        # where it left, and a position under the cloth is accepted for it (it may have fallen
+        # to the floor, far from the table). Small hops are drawn in mm.
+        doc = airborne_result()
+        doc["final"][2]["pos"] = [2.2, 1.9, -0.7]
+        for b in doc["samples"]["balls"]:  # ball 0 stays on the cloth: ball 2 alone flies
+            if b["id"] == 0:
+                b["pos"] = [[p[0], p[1], R] for p in b["pos"]]
+            if b["id"] == 2:
+                b["pos"] = [[p[0], p[1], R + (p[2] - R) / 20] for p in b["pos"]]
+        for ev in doc["events"]:
+            for a in ev["after"]:
+                a["pos"][2] = R if a["id"] == 0 else R + (a["pos"][2] - R) / 20
+                if a["state"] == "airborne" and a["id"] == 0:
+                    a["state"] = "sliding"
+        svg = self.svg_of(write("off_table.json", json.dumps(doc)), "off_table.svg")
+        self.assertTrue('id="axes_2"' in svg, "the side panel")
+        for text in ("height above cloth (mm)", "off table: 2", "ball 2 off the table"):
+            self.assertTrue(text in svg, text)
+        self.assertFalse("<!-- ball 0 -->" in svg, "ball 0 stays on the cloth")
+        # Off the table by its state alone, every z on the cloth: still the panel.
+        for b in doc["samples"]["balls"]:
+            b["pos"] = [[p[0], p[1], R] for p in b["pos"]]
+        for ev in doc["events"]:
+            for a in ev["after"]:
+                a["pos"][2] = R
+        doc["final"][2]["pos"] = [1.99, 1.32, R]
+        svg = self.svg_of(write("off_table_flat.json", json.dumps(doc)), "off_table_flat.svg")
+        self.assertTrue('id="axes_2"' in svg, "the side panel")
+        self.assertTrue("<!-- ball 2 off the table" in svg)
+
+    @needs_matplotlib
+    def test_planar_picture_unchanged(self):
+        # Without airborne data the picture is the planar one of before the side panel: one
+        # axes, nothing about heights, and the very bytes of the pool-plot of commit
+        # PLANAR_REFERENCE (taken from git when the source tree is a checkout; change that
+        # commit when the planar picture is changed on purpose).
+        svg = self.svg_of(self.result, "planar.svg")
+        self.assertTrue('id="axes_1"' in svg)
+        self.assertFalse('id="axes_2"' in svg, "a planar result has no side panel")
+        for text in ("height above", "airborne", "off table", "landing"):
+            self.assertFalse(text in svg, text)
+        source = os.path.dirname(os.path.dirname(os.path.abspath(ARGS.pool_plot)))
+        git = shutil.which("git")
+        shown = run([git, "-C", source, "show", f"{PLANAR_REFERENCE}:tools/pool-plot"]) \
+            if git else None
+        if shown is None or shown.returncode != 0:
+            self.skipTest(f"no git checkout with commit {PLANAR_REFERENCE} at {source}: the "
+                          "byte comparison with the planar pool-plot is skipped")
+        old = write("pool-plot-planar-reference", shown.stdout.decode())
+        with open(self.result, encoding="utf-8") as f:
+            doc = json.load(f)
+        del doc["samples"]
+        events_only = write("planar_events.json", json.dumps(doc))
+        for result in (self.result, events_only):
+            for ext in ("png", "svg"):
+                with self.subTest(result=os.path.basename(result), ext=ext):
+                    pictures = []
+                    for script in (old, ARGS.pool_plot):
+                        out = os.path.join(ARGS.work, f"planar_ref.{ext}")
+                        r = run([ARGS.python, script, result, "-o", out, "--title", "break"],
+                                timeout=180)
+                        self.assertEqual(r.returncode, 0, r.stderr)
+                        with open(out, "rb") as f:
+                            pictures.append(f.read())
+                    self.assertTrue(pictures[0] == pictures[1], "the planar picture changed")
+
+    def test_bad_heights_exit_2_naming_the_field(self):
+        # Non-finite coordinates and balls under the cloth are refused before anything is drawn
+        # (exit 2 whatever the Python: here the matplotlib stub, which would exit 1 on a good
+        # input).
+        nan, inf = float("nan"), float("inf")
+
+        def case(change):
+            doc = airborne_result()
+            change(doc)
+            return write("bad_height.json", json.dumps(doc))
+
+        def sample(ball, k, z):
+            return lambda d: d["samples"]["balls"][ball]["pos"][k].__setitem__(2, z)
+
+        def after(i, z):
+            return lambda d: d["events"][i]["after"][0]["pos"].__setitem__(2, z)
+
+        cases = [
+            (sample(0, 5, nan), "samples.balls[0].pos[5][2]: must be a finite number"),
+            (sample(2, 3, -inf), "samples.balls[2].pos[3][2]: must be a finite number"),
+            (lambda d: d["samples"]["balls"][0]["pos"][2].__setitem__(0, inf),
+             "samples.balls[0].pos[2][0]: must be a finite number"),
+            (sample(0, 7, 0.01), "samples.balls[0].pos[7][2]: z = 0.01 m is below the cloth"),
+            (sample(1, 0, R - 2e-6), "samples.balls[1].pos[0][2]: z = 0.028573 m is below"),
+            (after(3, nan), "events[3].after[0].pos[2]: must be a finite number"),
+            (after(3, 0.0), "events[3].after[0].pos[2]: z = 0 m is below the cloth"),
+            (lambda d: d["final"][0]["pos"].__setitem__(2, -0.5),
+             "final[0].pos[2]: z = -0.5 m is below the cloth"),
+            (lambda d: d["final"][1]["pos"].__setitem__(2, nan),
+             "final[1].pos[2]: must be a finite number"),
+            (lambda d: d["events"][0]["after"][0]["vel"].__setitem__(2, nan),
+             "events[0].after[0].vel[2]: must be a finite number"),
+            (lambda d: d["samples"]["balls"][0]["t"].pop(),
+             "samples.balls[0].t: must be an array of"),
+            (lambda d: d["samples"]["balls"][0]["t"].__setitem__(1, nan),
+             "samples.balls[0].t[1]: must be a finite number"),
+            (lambda d: d.__setitem__("ball_radius", 0), "ball_radius: must be > 0"),
+        ]
+        out = os.path.join(ARGS.work, "bad_height.png")
+        for change, expect in cases:
+            with self.subTest(expect=expect):
+                r = self.plot(case(change), "-o", out, env=self.no_mpl_env)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertTrue(r.stderr.decode().startswith("pool-plot: " + expect), r.stderr)
+                self.assertEqual(r.stderr.count(b"\n"), 1, r.stderr)
+        # Accepted: z a hair under R (rounding), and under the cloth for a ball off the table.
+        for change in (sample(0, 7, R - 1e-12), after(2, -0.7),
+                       lambda d: d["final"][2]["pos"].__setitem__(2, -0.7)):
+            r = self.plot(case(change), "-o", out, env=self.no_mpl_env)
+            self.assertEqual(r.returncode, 1, r.stderr)  # as far as drawing: the stub
 
 
 def main():
