@@ -11,10 +11,21 @@
 // is a multiple root (a grazing contact): reported there with its multiplicity, never dropped.
 //
 // Scaling: x = 2^e y with e chosen from the coefficients (exact, powers of two), so that huge or
-// tiny roots and coefficients do not overflow or underflow while evaluating p.
+// tiny roots and coefficients do not overflow or underflow while evaluating p. One scaling holds
+// p's values at all its roots in the double range only while the roots spread over less than
+// about 300 orders of magnitude; coefficients anywhere in the double range allow twice that. So
+// an extreme polynomial whose Newton polygon bends sharply (its roots fall into groups of very
+// different magnitudes) is split there into two polynomials, one per group, each solved with its
+// own scaling (pool_q_solve_split). And the iteration is logarithmic in the bracket's exponent
+// range, not linear (the slow-progress rule in pool_q_bracketed). Measured (tests/unit
+// test_wide_spread_products): roots spread over up to 600 orders of magnitude, every root
+// magnitude and coefficient the double range allows, all well-conditioned roots within 4 kappa u.
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "pool/quartic.h"
 #include "quartic_fast.h"
@@ -46,16 +57,17 @@ typedef struct pool_q_val {
 
 // A polynomial being solved: b[k] is the coefficient of x^k, b[n] != 0. With safe set (extreme
 // coefficient ranges), p is evaluated at |x| > 1 through the reversed polynomial q(z) = x^-n p(x),
-// z = 1/x, and every value (p, p', p'', the error scale) comes out divided by |x|^n: no overflow,
-// and the ratios the iteration uses (p/p', Halley's step, |p| against its error scale) unchanged.
+// z = 1/x, and every value (p, p', p'', the error scale) comes out multiplied by the same factor
+// s / |x|^n (s a power of two near |x| / 16, see pool_q_eval_all): no overflow, and the ratios the
+// iteration uses (p/p', Halley's step, |p| against its error scale) unchanged.
 typedef struct pool_q_p {
 	const double *b;
 	int n;
 	bool safe;
 } pool_q_p;
 
-// p(x), p'(x), p''(x), p'''(x) (the first three divided by |x|^n when p->safe and |x| > 1,
-// and then p''' is not computed: NAN).
+// p(x), p'(x), p''(x), p'''(x) (the first three times s / |x|^n when p->safe and |x| > 1, and
+// then p''' is not computed: NAN).
 // Horner's scheme for p and its derivatives with the degree a constant (unrolled by the compiler).
 #define POOL_Q_HORNER(N)                                                                          \
 	do {                                                                                          \
@@ -67,6 +79,17 @@ typedef struct pool_q_p {
 			f = f * x + b[k];                                                                     \
 		}                                                                                         \
 	} while (0)
+
+// 2^(ilogb(x) - 4) for finite |x| > 1, from the exponent bits (no library call: this is evaluated
+// at every point of an extreme polynomial).
+static inline double pool_q_scale_of(double x) {
+	uint64_t bits;
+	memcpy(&bits, &x, sizeof bits);
+	bits = (bits & 0x7FF0000000000000ULL) - (4ULL << 52);
+	double s;
+	memcpy(&s, &bits, sizeof s);
+	return s;
+}
 
 static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, double *d2, double *d3) {
 	const double *b = p->b;
@@ -103,10 +126,17 @@ static inline double pool_q_eval_all(const pool_q_p *p, double x, double *d1, do
 		q = q * z + b[k];
 	}
 	// p = x^n q(z), p' = x^(n-1) (n q - z q'), p'' = x^(n-2) (n(n-1) q - 2(n-1) z q' + z^2 q'').
+	// All three times s / |x|^n with s = 2^(ilogb(x) - 4) (exact, about |x| / 16): divided by |x|^n
+	// alone, p' would come out near z |b_n| / kappa at a root, subnormal (a few bits, a wrong Newton
+	// step) once |x| passes about 1e150, i.e. for roots spread over more than about 300 orders of
+	// magnitude around the balance point; with s it is near |b_n| / kappa, and s q cannot overflow
+	// (|q| <= sum |b_k| < 10, |x| / 16 * 10 < DBL_MAX).
+	double s = pool_q_scale_of(x);
 	double sg = (n % 2 == 0 || x > 0.0) ? 1.0 : -1.0, nn = (double)n;
-	*d1 = sg * z * (nn * q - z * d);
-	*d2 = sg * z * z * (nn * (nn - 1.0) * q - 2.0 * (nn - 1.0) * z * d + z * z * 2.0 * e);
-	return sg * q;
+	double zs = sg * (z * s); // sg s / x, in (1/32, 1/16] in magnitude
+	*d1 = zs * (nn * q - z * d);
+	*d2 = zs * z * (nn * (nn - 1.0) * q - 2.0 * (nn - 1.0) * z * d + z * z * 2.0 * e);
+	return sg * (q * s);
 }
 
 static pool_q_val pool_q_eval(const pool_q_p *p, double x) {
@@ -131,6 +161,7 @@ static double pool_q_abs_sum(const pool_q_p *p, double x) {
 		s = fabs(b[0]);
 		for (int k = 1; k <= n; ++k)
 			s = s * az + fabs(b[k]);
+		s *= pool_q_scale_of(x);
 	}
 	return s;
 }
@@ -167,7 +198,7 @@ static double pool_q_guess_step(const pool_q_p *p, const pool_q_val *v, int dir)
 			t = t2;
 	}
 	double lead = fabs(p->b[n]);
-	bool rescaled = p->safe && fabs(v->x) > 1.0; // |f| is divided by |x|^n: no leading-term bound
+	bool rescaled = p->safe && fabs(v->x) > 1.0; // |f| is rescaled: no leading-term bound
 	double tn_pow = t * t;
 	tn_pow = n == 4 ? tn_pow * tn_pow : n == 3 ? tn_pow * t : tn_pow;
 	if (!rescaled && (!(t < INFINITY) || lead * tn_pow > af)) {
@@ -226,6 +257,15 @@ static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, co
 			x = pool_q_split(a.x, c.x);
 	}
 	double lo = a.x, hi = c.x;
+	// Slow progress. Far from the root, where one term of p dominates (p ~ b_k x^k), Halley's step
+	// is the fixed fraction 2 / (k + 1) of x: x shrinks (or grows) by a constant factor per
+	// iteration, and a root many orders of magnitude away in a wide bracket (roots spread over more
+	// than about 60 orders of magnitude) took more than POOL_Q_MAX_ITER iterations, and the last
+	// iterate came back as a wrong root. So from the fourth iteration on (normal convergence needs
+	// fewer), two Halley steps in a row above |x| / 4 in the same direction make the next one a
+	// split of the bracket (geometric when the bracket spans orders of magnitude: it halves the
+	// exponent range), and the iteration count is logarithmic in that range.
+	double big = 0.0; // the previous step, when it was a Halley step above |x| / 4 (else 0)
 	for (int it = 0; it < POOL_Q_MAX_ITER; ++it) {
 		double d, d2, d3;
 		double f = pool_q_eval_all(p, x, &d, &d2, &d3);
@@ -256,9 +296,16 @@ static double pool_q_bracketed(const pool_q_p *p, pool_q_val a, pool_q_val c, co
 		// of the larger scale, which the next iteration, evaluated at the root's scale, removes.
 		if (!p->safe && adx <= 1e-3 * fabs(xn) && fabs(3.0 * d2 * d2 - 2.0 * d3 * d) * (adx * adx * adx) <= 12.0 * d * d * stop->abs_rel * fabs(xn))
 			return fmin(fmax(xn, lo), hi);
-		if (!(xn > lo && xn < hi)) {
-			// The step left the bracket (or p' vanished): bisect instead.
+		bool slow = false;
+		if (it >= 3) {
+			bool large = adx > 0.25 * fabs(x);
+			slow = large && dx * big > 0.0;
+			big = large ? dx : 0.0;
+		}
+		if (!(xn > lo && xn < hi) || slow) {
+			// The step left the bracket (or p' vanished), or is slow (above): bisect instead.
 			xn = pool_q_split(lo, hi);
+			big = 0.0;
 			if (!(xn > lo && xn < hi))
 				return x; // the bracket holds no other double: x is the root to rounding
 		}
@@ -431,6 +478,7 @@ static int pool_q_roots_in(const pool_q_p *p, double lo, double hi, double *out,
 // (factored out exactly), leading coefficient positive, and x = 2^scale y.
 typedef struct pool_q_poly {
 	int n;
+	int deg;   // degree without the zero roots, before the underflow check (n may be lower)
 	int zeros; // multiplicity of the root x = 0
 	int scale;
 	bool safe; // extreme coefficients: evaluate through the reversed polynomial at |x| > 1
@@ -449,6 +497,7 @@ static bool pool_q_prepare(const double c[5], pool_q_poly *p) {
 	while (n >= 0 && a[n] == 0.0)
 		--n;
 	p->n = 0;
+	p->deg = 0;
 	p->zeros = 0;
 	p->scale = 0;
 	p->safe = false;
@@ -459,6 +508,7 @@ static bool pool_q_prepare(const double c[5], pool_q_poly *p) {
 		++z;
 	p->zeros = z;
 	p->n = n - z;
+	p->deg = p->n;
 	n = p->n;
 	if (n == 0)
 		return true; // a monomial: only the exact zero roots
@@ -503,6 +553,119 @@ static double pool_q_unscale(double y, int e) {
 	return e == 0 ? y : ldexp(y, e);
 }
 
+// Newton-polygon split. The roots of p group by magnitude along the upper convex hull of the
+// points (k, log2 |a_k|): an edge of slope s carries as many roots as its width, of magnitude
+// about 2^-s. Where the hull bends by G bits at a vertex k (the slopes on its two sides differ by
+// G), p's roots below the bend are those of a_0 + ... + a_k x^k and the ones above it those of
+// a_k + ... + a_n x^(n-k), up to relative perturbations of order 2^-G (the terms dropped are that
+// much smaller than the ones kept, at every root of the group). One scaling x = 2^e y cannot keep
+// p's values at every root in the double range once its roots spread over more than about 300
+// orders of magnitude (coefficients anywhere in the double range allow over 600): the values at
+// the smallest roots fall into the subnormal range or below, signs and roots are lost. So an
+// extreme polynomial (not moderate, see pool_q_prepare) whose hull bends by at least
+// POOL_Q_SPLIT_BITS is split at its largest bend and each part solved with its own scaling;
+// a part spreads its roots over at most 3 * POOL_Q_SPLIT_BITS bits, well inside what one scaling
+// handles. The perturbation 2^-100 is far below the rounding of the coefficients.
+#define POOL_Q_SPLIT_BITS 100.0
+
+// ilogb(x) for x != 0 finite, inline for normal x.
+static inline int pool_q_ilogb(double x) {
+	uint64_t bits;
+	memcpy(&bits, &x, sizeof bits);
+	int e = (int)((bits >> 52) & 0x7FF);
+	return e != 0 ? e - 1023 : ilogb(x);
+}
+
+// a[0..n] ascending, a[0] and a[n] non-zero: the interior hull vertex with the largest bend, its
+// bend in bits in *bend (0 and 0 when there is none). Slopes in twelfths of a bit, integers (12 is
+// a multiple of every width 1 .. 4).
+static int pool_q_split_vertex(const double *a, int n, double *bend) {
+	int e[5], best = 0, gbest = 0;
+	for (int k = 0; k <= n; ++k)
+		e[k] = a[k] != 0.0 ? pool_q_ilogb(a[k]) : 0;
+	for (int k = 1; k < n; ++k) {
+		if (a[k] == 0.0)
+			continue;
+		int left = INT_MAX, right = INT_MIN;
+		for (int j = 0; j < k; ++j) {
+			int sl = a[j] != 0.0 ? 12 * (e[k] - e[j]) / (k - j) : INT_MAX;
+			left = sl < left ? sl : left;
+		}
+		for (int l = k + 1; l <= n; ++l) {
+			int sr = a[l] != 0.0 ? 12 * (e[l] - e[k]) / (l - k) : INT_MIN;
+			right = sr > right ? sr : right;
+		}
+		if (left - right > gbest) {
+			gbest = left - right;
+			best = k;
+		}
+	}
+	*bend = gbest / 12.0;
+	return best;
+}
+
+static int pool_q_solve_split(const pool_q_poly *p, const double c[5], double lo, double hi, double *out, bool first_only);
+
+// Real roots in [lo, hi] (x, not scaled) of the polynomial c[0] x^4 + ... + c[4] (finite), prepared
+// as *p, other than its exact zero roots, ascending by multiplicity; with first_only only the
+// smallest one. Roots that overflow when unscaled are dropped.
+static inline int pool_q_solve(const pool_q_poly *p, const double c[5], double lo, double hi, double *out, bool first_only) {
+	// (The bend at any hull vertex is at most -B_0 - B_n, with B_k = ilogb(b_k) for the balanced,
+	// normalised coefficients, max B_k = 0: no split unless the end coefficients are small.)
+	if (p->safe && p->deg >= 2 && fabs(p->b[0]) * fabs(p->b[p->deg]) < 0x1p-90) {
+		int m = pool_q_solve_split(p, c, lo, hi, out, first_only);
+		if (m >= 0)
+			return m;
+	}
+	double y[4];
+	double ylo = pool_q_unscale(lo, -p->scale), yhi = pool_q_unscale(hi, -p->scale);
+	pool_q_p pp = {p->b, p->n, p->safe};
+	int m = pool_q_roots_in(&pp, ylo, yhi, y, first_only, &pool_q_stop_root);
+	// (A quadratic gives both its roots even with first_only: out holds one root then.)
+	int count = 0;
+	for (int i = 0; i < m && !(first_only && count > 0); ++i) {
+		double x = pool_q_unscale(y[i], p->scale);
+		if (isfinite(x) && x >= lo && x <= hi)
+			out[count++] = x;
+	}
+	return count;
+}
+
+// pool_q_solve by the split at the largest bend of the Newton polygon when it bends by at least
+// POOL_Q_SPLIT_BITS; -1 when it does not (the caller solves p whole).
+static int pool_q_solve_split(const pool_q_poly *p, const double c[5], double lo, double hi, double *out, bool first_only) {
+	const int n = p->deg;
+	double a[5]; // ascending, the zero roots divided out
+	for (int k = 0; k <= n; ++k)
+		a[k] = c[4 - p->zeros - k];
+	double bend;
+	int k = pool_q_split_vertex(a, n, &bend);
+	if (k == 0 || !(bend >= POOL_Q_SPLIT_BITS))
+		return -1;
+	// The parts, highest degree first: a_k x^k + ... + a_0 and a_n x^(n-k) + ... + a_k.
+	double low[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, high[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+	for (int i = 0; i <= k; ++i)
+		low[4 - i] = a[i];
+	for (int i = k; i <= n; ++i)
+		high[4 - (i - k)] = a[i];
+	pool_q_poly pl, ph;
+	(void)pool_q_prepare(low, &pl);
+	(void)pool_q_prepare(high, &ph);
+	double rl[4], rh[4];
+	int ml = pool_q_solve(&pl, low, lo, hi, rl, first_only);
+	int mh = pool_q_solve(&ph, high, lo, hi, rh, first_only);
+	// Merged ascending; out holds one root only with first_only.
+	const int cap = first_only ? 1 : 4;
+	int m = 0, i = 0, j = 0;
+	while ((i < ml || j < mh) && m < cap) {
+		if (j >= mh || (i < ml && rl[i] <= rh[j]))
+			out[m++] = rl[i++];
+		else
+			out[m++] = rh[j++];
+	}
+	return m;
+}
+
 int pool_quartic_real_roots(const double c[5], double roots[4]) {
 	if (!c || !roots)
 		return 0;
@@ -513,20 +676,16 @@ int pool_quartic_real_roots(const double c[5], double roots[4]) {
 	pool_q_poly p;
 	if (!pool_q_prepare(c, &p))
 		return 0;
-	double y[4];
-	pool_q_p pp = {p.b, p.n, p.safe};
-	int m = pool_q_roots_in(&pp, -INFINITY, INFINITY, y, false, &pool_q_stop_root);
-	// Merge the exact zero roots in ascending order; drop roots that overflow when unscaled.
+	double x[4];
+	int m = p.n > 0 ? pool_q_solve(&p, c, -INFINITY, INFINITY, x, false) : 0;
+	// Merge the exact zero roots in ascending order.
 	int count = 0, zeros = p.zeros;
 	for (int i = 0; i < m; ++i) {
-		double x = pool_q_unscale(y[i], p.scale);
-		if (!isfinite(x))
-			continue;
-		while (zeros > 0 && x > 0.0) {
+		while (zeros > 0 && x[i] > 0.0) {
 			roots[count++] = 0.0;
 			--zeros;
 		}
-		roots[count++] = x;
+		roots[count++] = x[i];
 	}
 	while (zeros-- > 0)
 		roots[count++] = 0.0;
@@ -545,19 +704,11 @@ int pool_quartic_smallest_root_in(const double c[5], double lo, double hi, doubl
 	if (!pool_q_prepare(c, &p))
 		return -1;
 	bool zero_in = p.zeros > 0 && lo <= 0.0 && 0.0 <= hi;
-	double y[4];
-	double ylo = pool_q_unscale(lo, -p.scale), yhi = pool_q_unscale(hi, -p.scale);
+	double x;
 	// Only roots below 0 can beat an exact zero root.
-	if (zero_in)
-		yhi = fmin(yhi, 0.0);
-	pool_q_p pp = {p.b, p.n, p.safe};
-	int m = pool_q_roots_in(&pp, ylo, yhi, y, true, &pool_q_stop_root);
-	if (m > 0) {
-		double x = pool_q_unscale(y[0], p.scale);
-		if (x >= lo && x <= hi && !(zero_in && x > 0.0)) {
-			*root = x;
-			return 0;
-		}
+	if (p.n > 0 && pool_q_solve(&p, c, lo, zero_in && hi > 0.0 ? 0.0 : hi, &x, true) > 0 && !(zero_in && x > 0.0)) {
+		*root = x;
+		return 0;
 	}
 	if (zero_in) {
 		*root = 0.0;
