@@ -1343,6 +1343,59 @@ static void test_fast_path_wide_spread(void **state) {
 	assert_true(checked > 10000);
 }
 
+// Subnormal roots (|r| < DBL_MIN): a root 1e-323 .. 1e-308 with three others of moderate size
+// (1e-3 .. 1e3), or the second one anywhere in 1e-300 .. 1e-8; the constant term is then
+// subnormal or close to it and carries few bits, so only an absolute accuracy is promised
+// (pool/quartic.h): within DBL_MIN of the root of the rounded coefficients (Newton in long double),
+// for real_roots and for the window [-1e-300, 1e-300]; the count is right whenever the other roots
+// are well-conditioned.
+static void test_subnormal_roots(void **state) {
+	(void)state;
+	tq_rng = 0x3F84D5B5B5470917ULL;
+	int checked = 0;
+	double worst = 0.0;
+	for (int iter = 0; iter < 20000; ++iter) {
+		long double real[4];
+		real[0] = tq_signed(1.0) * powl(10.0L, -323.0L + 15.0L * tq_uniform());
+		for (int i = 1; i < 4; ++i)
+			real[i] = tq_signed(tq_log_uniform(-3.0, 3.0));
+		if (iter % 2)
+			real[1] = tq_signed(tq_log_uniform(-300.0, -8.0));
+		double c[5];
+		tq_expand(tq_signed(tq_log_uniform(-3.0, 3.0)), 4, real, 0, NULL, c);
+		if (c[4] == 0.0)
+			continue; // the constant term underflowed: the tiny root is then exactly 0
+		long double x = real[0];
+		for (int it = 0; it < 60; ++it) {
+			long double f = 0.0L, d = 0.0L;
+			for (int k = 0; k < 5; ++k) {
+				d = d * x + f;
+				f = f * x + c[k];
+			}
+			x -= f / d;
+		}
+		long double ref[4];
+		double kap[4];
+		if (tq_reference(c, 3, real + 1, tq_same_root, ref, kap))
+			continue; // the other roots ill-conditioned
+		++checked;
+		double r[4], t = 1.0;
+		int n = pool_quartic_real_roots(c, r);
+		if (n != 4)
+			fail_msg("subnormal case %d: %d real roots, expected 4", iter, n);
+		double best = INFINITY;
+		for (int i = 0; i < n; ++i)
+			best = fmin(best, fabs(r[i] - (double)x));
+		worst = fmax(worst, best);
+		if (!(best <= DBL_MIN))
+			fail_msg("subnormal case %d: nearest root off by %g from %.17Lg", iter, best, x);
+		if (pool_quartic_smallest_root_in(c, -1e-300, 1e-300, &t) != 0 || !(fabs(t - (double)x) <= DBL_MIN))
+			fail_msg("subnormal case %d: window root %g, expected %.17Lg", iter, t, x);
+	}
+	print_message("  subnormal roots: %d cases, worst absolute error %g (DBL_MIN %g)\n", checked, worst, DBL_MIN);
+	assert_true(checked > 8000); // (about half have a constant term that underflows to 0)
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 	    cmocka_unit_test(test_public_cases),
@@ -1364,6 +1417,7 @@ int main(void) {
 	    cmocka_unit_test(test_wide_spread_reproducer),
 	    cmocka_unit_test(test_wide_spread_products),
 	    cmocka_unit_test(test_fast_path_wide_spread),
+	    cmocka_unit_test(test_subnormal_roots),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
