@@ -17,10 +17,11 @@ extern "C" {
 /// kappa = sum |c_i| |r|^(4-i) / (|r| |p'(r)|) and kappa u <= 1e-9 (u = 2^-53) is reported, and
 /// the root count is right, unless a complex pair lies within 1e-3 (relative) of the real axis;
 /// each such root within 1e3 kappa u relative (tested for 2^53 DBL_MIN <= |r| <= DBL_MAX / 4,
-/// about 2e-292 to 4e307; at most about 3 kappa u seen). Roots above DBL_MAX in magnitude are not reported; roots below DBL_MIN
-/// (subnormal) are accurate in absolute terms only (error below DBL_MIN; one subnormal spacing
-/// seen). Ill-conditioned roots (near-multiple, grazing contacts) are reported with their
-/// multiplicity when p vanishes at a critical point within its rounding.
+/// about 2e-292 to 4e307; at most about 3 kappa u seen). Roots above DBL_MAX in magnitude are
+/// not reported; roots below DBL_MIN (subnormal) are accurate in absolute terms only (error
+/// below DBL_MIN; one subnormal spacing seen). Ill-conditioned roots (near-multiple, grazing
+/// contacts) are reported with their multiplicity when p vanishes at a critical point within its
+/// rounding.
 POOL_API int pool_quartic_real_roots(const double c[5], double roots[4]);
 
 /// Smallest real root of the same polynomial in [lo, hi], or a negative return when there is
