@@ -15,9 +15,7 @@ int pool_handle_ball_ball(const pool_event_context *ctx, pool_event_type type, p
 	pool_vec3 n = pool_v3_sub(s[0].pos, s[1].pos); // towards body 1, the ball with the smaller id
 	n = pool_v3_scale(n, 1.0 / pool_v3_len(n));
 	pool_collide(&s[0], p->ball_radius, p->ball_mass, &s[1], p->ball_radius, 1.0, n, p->e_ball, p->mu_ball);
-	for (int k = 0; k < 2; ++k) {
-		pool_planar_after_impulse(ctx->def, &s[k]);
-		pool_motion_derive(p, &s[k]);
-	}
+	for (int k = 0; k < 2; ++k)
+		pool_motion_after_impulse(ctx->def, &s[k]);
 	return pool_contact_floor(p, &s[0], &s[1], n) ? POOL_EVENT_FLAG_FLOOR : 0;
 }

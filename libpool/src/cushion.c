@@ -16,8 +16,7 @@ int pool_handle_ball_cushion(const pool_event_context *ctx, pool_event_type type
 	const pool_params *p = &ctx->def->params;
 	const pool_vec3 n = pool_cushion_normal(&ctx->def->table, s[0].pos, ctx->rail);
 	pool_collide(&s[0], p->ball_radius, p->ball_mass, NULL, p->ball_radius, 0.0, n, p->e_cushion, p->mu_cushion);
-	pool_planar_after_impulse(ctx->def, &s[0]);
-	pool_motion_derive(p, &s[0]);
+	pool_motion_after_impulse(ctx->def, &s[0]); // airborne mode: pressed into the cloth, a hop may follow
 	const pool_vec3 nh = pool_v3_xy(n);
 	return pool_contact_floor(p, &s[0], NULL, pool_v3_scale(nh, 1.0 / pool_v3_len(nh))) ? POOL_EVENT_FLAG_FLOOR : 0;
 }

@@ -31,10 +31,22 @@ int pool_handle_ball_cushion(const pool_event_context *ctx, pool_event_type type
 /// A ball into a pocket (cushion.c: a cushion contact inside a mouth).
 int pool_handle_pocket(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
 
-/// Planar mode drops v_z after every impulse (PHYSICS.md "Collisions"); airborne mode keeps it.
-static inline void pool_planar_after_impulse(const pool_sim_def *def, pool_ball_state *s) {
-	if (!def->airborne)
-		s->vel.z = 0.0;
-}
+/// A ball on the cloth (airborne mode) settles instead of bouncing when its rebound would fly
+/// for less than this (s): a rebound at v_z flies 2 v_z / g, so the bounces of a dropped ball
+/// (flight times shrinking by e_table each) end after log(T_first / this) / log(1 / e_table)
+/// events, never a Zeno series; settling drops at most m (g this / 2)^2 / 2 = 2e-6 J (defaults).
+#define POOL_SETTLE_FLIGHT_TIME 1e-3
+
+/// A landing (ball_table): Petit's law with the cloth (n = k, e_table, mu_table), then settle or
+/// fly (cloth.c).
+int pool_handle_ball_table(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
+/// A ball clears a rail and leaves the table (cloth.c): final, like a pocket.
+int pool_handle_off_table(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
+
+/// The motion state after an impulse or at placement (motion.c). Planar mode drops v_z and
+/// derives the on-cloth state (PHYSICS.md "Collisions"); airborne mode makes the ball airborne
+/// when it is above the cloth or moves vertically faster than POOL_APPROACH_EPS (into the cloth:
+/// the ball_table contact follows at once, by the contact rule), else puts it on the cloth.
+void pool_motion_after_impulse(const pool_sim_def *def, pool_ball_state *s);
 
 #endif

@@ -4,6 +4,7 @@
 
 #include <math.h>
 
+#include "contact.h"
 #include "handlers.h"
 #include "segment.h"
 #include "vec3.h"
@@ -90,4 +91,25 @@ int pool_handle_state_change(const pool_event_context *ctx, pool_event_type type
 	(void)count;
 	pool_motion_apply_change(&ctx->def->params, &s[0], type);
 	return 0;
+}
+
+void pool_motion_after_impulse(const pool_sim_def *def, pool_ball_state *s) {
+	const pool_params *p = &def->params;
+	if (s->motion == POOL_MOTION_POCKETED || s->motion == POOL_MOTION_OFF_TABLE)
+		return;
+	if (!def->airborne) {
+		s->vel.z = 0.0;
+		pool_motion_derive(p, s);
+		return;
+	}
+	const double R = p->ball_radius;
+	if (s->pos.z > R + POOL_TOUCH_TOLERANCE || fabs(s->vel.z) > POOL_APPROACH_EPS) {
+		s->motion = POOL_MOTION_AIRBORNE;
+		return;
+	}
+	s->pos.z = R;
+	s->vel.z = 0.0;
+	if (s->motion == POOL_MOTION_AIRBORNE || s->motion == POOL_MOTION_LINKED)
+		s->motion = POOL_MOTION_STATIONARY; // re-derived from the velocities below
+	pool_motion_derive(p, s);
 }

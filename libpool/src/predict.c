@@ -124,3 +124,89 @@ double pool_predict_cushion(const pool_table_def *table, double R, const pool_ba
 	}
 	return best;
 }
+
+// Coordinate of the nose line of a rail (the table's edge): y = 0 / W, x = 0 / L.
+static double nose_line(const pool_table_def *table, pool_rail rail) {
+	switch (rail) {
+	case POOL_RAIL_NORTH: return table->width;
+	case POOL_RAIL_EAST: return table->length;
+	default: return 0.0;
+	}
+}
+
+double pool_predict_flight(const pool_table_def *table, double R, const pool_ball_state *s, pool_vec3 acc, double T,
+                           pool_event_type *kind, pool_rail *rail, pool_pocket *pocket) {
+	const double dc = pool_table_contact_distance(table, R), h = table->cushion_height;
+	*kind = POOL_EVENT_BALL_TABLE;
+	*rail = POOL_RAIL_NONE;
+	*pocket = POOL_POCKET_NONE;
+	// Landing: the height above the cloth z - R reaches 0 (gravity presses it down).
+	pool_contact_gap land;
+	land.gap = s->pos.z - R;
+	land.speed = -s->vel.z;
+	land.accel = -acc.z;
+	land.f[0] = land.gap;
+	land.f[1] = s->vel.z;
+	land.f[2] = 0.5 * acc.z;
+	land.f[3] = land.f[4] = 0.0;
+	double best = pool_contact_next(&land, T);
+	for (int r = 0; r < 4; ++r) {
+		const pool_rail rr = (pool_rail)r;
+		const int along_x = pool_rail_along_x(rr);
+		const double side = pool_rail_side(rr);
+		const double q0 = along_x ? s->pos.y : s->pos.x, vq = along_x ? s->vel.y : s->vel.x, aq = along_x ? acc.y : acc.x;
+		const double a0 = along_x ? s->pos.x : s->pos.y, va = along_x ? s->vel.x : s->vel.y, aa = along_x ? acc.x : acc.y;
+		const double window = fmin(best, T);
+		// The nose line in the rail's normal plane: distance from it (u inwards, w up) equal to R,
+		// the ball-ball quartic with one "ball" of radius 0 (radius R/2 for the pair).
+		const double n = nose_line(table, rr);
+		const pool_vec3 dp = pool_v3(side * (n - q0), s->pos.z - h, 0.0);
+		const pool_vec3 dv = pool_v3(-side * vq, s->vel.z, 0.0), da = pool_v3(-0.5 * side * aq, 0.5 * acc.z, 0.0);
+		double t = pool_predict_ball_ball(dp, dv, da, 0.5 * R, window);
+		if (t <= window && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) == POOL_POCKET_NONE) {
+			best = t;
+			*kind = POOL_EVENT_BALL_CUSHION;
+			*rail = rr;
+			*pocket = POOL_POCKET_NONE;
+			continue;
+		}
+		// Over a pocket mouth there is no nose: crossing the contact line below the nose height
+		// is a pocket; above it the ball flies on.
+		t = line_contact(q0, vq, aq, pool_rail_contact_line(table, dc, rr), side, window);
+		if (t <= window) {
+			const pool_pocket pk = pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t);
+			if (pk != POOL_POCKET_NONE && s->pos.z + t * s->vel.z + 0.5 * acc.z * t * t < h) {
+				best = t;
+				*kind = POOL_EVENT_POCKET;
+				*rail = rr;
+				*pocket = pk;
+				continue;
+			}
+		}
+		// Crossing the table's edge (the nose line's vertical plane) without touching the nose:
+		// it leaves the table.
+		t = line_contact(q0, vq, aq, n, side, window);
+		if (t <= window) {
+			best = t;
+			*kind = POOL_EVENT_OFF_TABLE;
+			*rail = rr;
+			*pocket = POOL_POCKET_NONE;
+		}
+	}
+	if (*kind == POOL_EVENT_BALL_TABLE && isfinite(best)) {
+		// Landing beyond a contact line (over a pocket mouth it had crossed above the nose, or on
+		// the rail top, which is not modelled): into that pocket, or off the table.
+		const pool_vec3 at = pool_v3_madd(pool_v3_madd(s->pos, best, s->vel), 0.5 * best * best, acc);
+		for (int r = 0; r < 4; ++r) {
+			const pool_rail rr = (pool_rail)r;
+			const double q = pool_rail_along_x(rr) ? at.y : at.x;
+			if (pool_rail_side(rr) * (pool_rail_contact_line(table, dc, rr) - q) < -POOL_TOUCH_TOLERANCE) {
+				*pocket = pool_pocket_at(table, rr, pool_rail_along_x(rr) ? at.x : at.y);
+				*kind = *pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_OFF_TABLE;
+				*rail = rr;
+				break;
+			}
+		}
+	}
+	return best;
+}

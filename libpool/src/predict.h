@@ -20,4 +20,14 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
                             pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket);
 
+/// Earliest tau in [0, T] of an airborne ball's own next event (state s, acceleration acc):
+/// landing (ball_table), a cushion nose met in flight (ball_cushion: distance to the nose line
+/// in the rail's normal plane equal to R, a quartic), a pocket (crossing a contact line inside a
+/// mouth below the nose height, or landing beyond a contact line inside a mouth) or leaving the
+/// table (off_table: crossing the table's edge without touching the nose, or landing beyond a
+/// contact line outside the mouths, on the rail top, which is not modelled). *kind, *rail and
+/// *pocket describe it; INFINITY when none within T.
+double pool_predict_flight(const pool_table_def *table, double R, const pool_ball_state *s, pool_vec3 acc, double T,
+                           pool_event_type *kind, pool_rail *rail, pool_pocket *pocket);
+
 #endif

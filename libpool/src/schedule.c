@@ -18,7 +18,17 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	b->own_kind = POOL_EVENT_SPIN_STOP;
 	b->own_rail = POOL_RAIL_NONE;
 	b->own_pocket = POOL_POCKET_NONE;
-	if (!b->active || !b->seg.model->on_cloth)
+	if (!b->active)
+		return;
+	if (s->motion == POOL_MOTION_AIRBORNE) {
+		// In flight: landing, a nose, a pocket or the table's edge; nothing changes by itself.
+		const double window = fmax(sim->def.max_time - t, 0.0);
+		const double dt = pool_predict_flight(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &b->own_kind,
+		                                      &b->own_rail, &b->own_pocket);
+		b->own_time = t + dt;
+		return;
+	}
+	if (!b->seg.model->on_cloth)
 		return;
 	pool_event_type kind;
 	double dt = pool_segment_next_change(&b->seg, &kind);

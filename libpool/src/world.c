@@ -67,8 +67,6 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 		                      "table.cushion_height: must be < 2 params.ball_radius (%g m)", 2.0 * R);
 	if (!(def->table.length > 2.0 * R && def->table.width > 2.0 * R))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "table.width: must be > 2 params.ball_radius");
-	if (def->airborne)
-		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "options.airborne: airborne motion not implemented yet");
 	if (isnan(def->max_time) || !(def->max_time > 0.0))
 		return pool_error_set(error, isnan(def->max_time) ? POOL_ERR_NON_FINITE : POOL_ERR_INVALID_ARGUMENT,
 		                      "options.max_time: must be > 0");
@@ -256,11 +254,11 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	if (pool_world_planar(sim)) {
 		if (fabs(ball->pos.z - R) > tol)
 			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
-			                      "balls[%d].pos: z must be the ball radius (%g m): airborne motion not implemented yet", idx, R);
+			                      "balls[%d].pos: z must be the ball radius (%g m) in planar mode (options.airborne puts balls off the cloth)", idx, R);
 		// Dropping a vertical velocity silently would simulate another shot than the caller asked for.
 		if (fabs(ball->vel.z) > POOL_APPROACH_EPS)
 			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
-			                      "balls[%d].vel: vertical velocity %g m/s needs airborne motion, not implemented yet",
+			                      "balls[%d].vel: vertical velocity %g m/s needs airborne motion (options.airborne)",
 			                      idx, ball->vel.z);
 	} else if (!(ball->pos.z >= R - tol)) {
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "balls[%d].pos: z below the ball radius (%g m): under the cloth",
@@ -278,12 +276,10 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	if (reserve_balls(sim, idx + 1) || reserve_history(sim, 0, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "balls[%d]: out of memory", idx);
 	pool_ball_state s = *ball;
-	if (pool_world_planar(sim)) {
-		s.pos.z = R;
-		s.vel.z = 0.0; // no vertical velocity (at most POOL_APPROACH_EPS was given)
-	}
+	if (pool_world_planar(sim))
+		s.pos.z = R; // and v_z (at most POOL_APPROACH_EPS was given) is dropped below
 	s.motion = POOL_MOTION_STATIONARY;
-	pool_motion_derive(&sim->def.params, &s);
+	pool_motion_after_impulse(&sim->def, &s);
 	sim->n++;
 	pool_body *b = &sim->body[idx];
 	memset(b, 0, sizeof *b);
@@ -329,9 +325,10 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 	if (reserve_history(sim, 1, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "strike: out of memory");
 	s.vel = v;
-	pool_planar_after_impulse(&sim->def, &s); // planar mode drops the vertical component
 	s.omega = pool_v3_add(s.omega, w);
-	pool_motion_derive(&sim->def.params, &s);
+	// Planar mode drops the vertical component; with airborne motion an elevated cue drives the
+	// ball into the cloth (v_z < 0): a ball_table impact at this very instant (jump and massé).
+	pool_motion_after_impulse(&sim->def, &s);
 	pool_schedule_begin_segment(sim, i, &s, now);
 	push_event(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, &i, 1);
 	sim->time = now;

@@ -289,9 +289,9 @@ static void test_validation(void **state) {
 	assert_int_equal(pool_sim_create(&def, &sim, &err), POOL_ERR_NON_FINITE);
 	assert_non_null(strstr(err.message, "params.e_ball"));
 	def = pool_default_sim_def();
-	def.airborne = true;
-	assert_int_equal(pool_sim_create(&def, &sim, &err), POOL_ERR_INVALID_ARGUMENT);
-	assert_non_null(strstr(err.message, "airborne motion not implemented yet"));
+	def.airborne = true; // accepted: airborne motion (test_airborne)
+	assert_int_equal(pool_sim_create(&def, &sim, &err), POOL_OK);
+	pool_sim_destroy(sim);
 	def = pool_default_sim_def();
 	def.max_events = 0;
 	assert_int_equal(pool_sim_create(&def, &sim, &err), POOL_ERR_INVALID_ARGUMENT);
@@ -326,7 +326,7 @@ static void test_validation(void **state) {
 	rising.vel = (pool_vec3){1.0, 0.0, 3.0}; // planar mode cannot honour v_z: refused, not dropped
 	assert_int_equal(pool_sim_add_ball(sim, &rising, &err), POOL_ERR_INVALID_ARGUMENT);
 	assert_string_equal(err.message,
-	                    "balls[2].vel: vertical velocity 3 m/s needs airborne motion, not implemented yet");
+	                    "balls[2].vel: vertical velocity 3 m/s needs airborne motion (options.airborne)");
 	rising.vel.z = 1e-12; // rounding noise of a caller's own arithmetic is accepted
 	assert_int_equal(pool_sim_add_ball(sim, &rising, &err), POOL_OK);
 	assert_int_equal(pool_sim_ball_count(sim), 3);

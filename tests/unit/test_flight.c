@@ -1,0 +1,426 @@
+// Airborne motion (PHYSICS.md "Airborne", "Ball–cloth", "Ball–cushion" in flight), against closed
+// forms computed here from the spec, never from the library: a dropped ball's impact times and
+// rebounds (VALIDATION.md 9: e_table^2 of the height), a throw's landing point, a jump strike's
+// rebound off the cloth and its landing, the nose-line contact of a flying ball (bisection on the
+// distance), leaving the table, a ball falling on a resting one (momentum, energy). Then
+// invariants over random airborne shots: energy (kinetic + potential) never increases across an
+// event, no interpenetration and no ball under the cloth (sampled densely), bounded event counts,
+// determinism.
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "motion.h"
+#include "pool/pool.h"
+#include "sim_internal.h"
+#include "vec3.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/// s, the settling threshold of PHYSICS.md's "too weak to fly longer than a threshold" as the
+/// manual states it (docs/library.md): a rebound flying less than 1 ms settles.
+#define SETTLE_FLIGHT 1e-3
+
+static void near_rel(double got, double want, double rel) {
+	if (!(fabs(got - want) <= rel * fmax(fabs(want), 1e-300)))
+		fail_msg("got %.17g, want %.17g", got, want);
+}
+
+static pool_sim_def air_def(void) {
+	pool_sim_def def = pool_default_sim_def();
+	def.airborne = true;
+	return def;
+}
+
+static pool_sim *make(const pool_sim_def *def) {
+	pool_sim *sim = NULL;
+	pool_error err;
+	if (pool_sim_create(def, &sim, &err) != POOL_OK)
+		fail_msg("create: %s", err.message);
+	return sim;
+}
+
+static void add(pool_sim *sim, int32_t id, pool_vec3 pos, pool_vec3 vel, pool_vec3 omega) {
+	pool_ball_state b;
+	memset(&b, 0, sizeof b);
+	b.id = id;
+	b.pos = pos;
+	b.vel = vel;
+	b.omega = omega;
+	pool_error err;
+	if (pool_sim_add_ball(sim, &b, &err) != POOL_OK)
+		fail_msg("add %d: %s", (int)id, err.message);
+}
+
+// VALIDATION.md 9 through a whole drop: falling from z0, the ball meets the cloth at
+// t1 = sqrt(2 (z0 - R) / g) at v1 = g t1; each rebound leaves at e_table times the impact speed
+// (so reaches e_table^2 of the previous height) and lands 2 v / g later; the first rebound that
+// would fly less than SETTLE_FLIGHT settles the ball at rest on the cloth.
+static void test_drop(void **state) {
+	(void)state;
+	const double heights[] = {0.2, 0.05, 1.0};
+	const double restitutions[] = {0.5, 0.7, 0.0};
+	for (size_t h = 0; h < sizeof heights / sizeof heights[0]; ++h)
+		for (size_t k = 0; k < sizeof restitutions / sizeof restitutions[0]; ++k) {
+			pool_sim_def def = air_def();
+			def.params.e_table = restitutions[k];
+			const double R = def.params.ball_radius, g = def.params.g, e = restitutions[k];
+			pool_sim *sim = make(&def);
+			add(sim, 0, pool_v3(1.0, 0.6, heights[h]), pool_v3(0, 0, 0), pool_v3(0, 0, 0));
+			assert_int_equal(pool_sim_run(sim), POOL_OK);
+			assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_REST);
+			int n;
+			const pool_event *ev = pool_sim_events(sim, &n);
+			double t = sqrt(2.0 * (heights[h] - R) / g), v = g * t;
+			int i = 0;
+			for (;; ++i) {
+				assert_true(i < n);
+				assert_int_equal(ev[i].type, POOL_EVENT_BALL_TABLE);
+				near_rel(ev[i].time, t, 1e-12);
+				const pool_ball_state *a = pool_sim_event_states(sim, &ev[i]);
+				near_rel(a->pos.z, R, 1e-15);
+				const double up = e * v;
+				if (2.0 * up / g < SETTLE_FLIGHT) {
+					assert_int_equal(a->motion, POOL_MOTION_STATIONARY);
+					assert_true(a->vel.z == 0.0);
+					break;
+				}
+				assert_int_equal(a->motion, POOL_MOTION_AIRBORNE);
+				near_rel(a->vel.z, up, 1e-12);
+				// The rebound's apex: e^2 of the fall height before it (VALIDATION.md 9).
+				pool_ball_state top;
+				assert_int_equal(pool_sim_state_at(sim, t + up / g, &top), POOL_OK);
+				near_rel(top.pos.z - R, up * up / (2.0 * g), 1e-9);
+				t += 2.0 * up / g;
+				v = up;
+			}
+			assert_int_equal(i + 1, n); // nothing after settling
+			pool_sim_destroy(sim);
+		}
+}
+
+// A throw with a frictionless cloth (mu_table = 0): impacts only reverse v_z (times e), so the
+// ball lands at x0 + vx t1 with t1 the positive root of z0 + vz t - g t^2/2 = R, and keeps vx.
+static void test_throw_landing(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	def.params.mu_table = 0.0;
+	const double R = def.params.ball_radius, g = def.params.g;
+	pool_sim *sim = make(&def);
+	const double z0 = 0.15, vx = 0.8, vz = 1.2;
+	add(sim, 0, pool_v3(0.5, 0.6, z0), pool_v3(vx, 0, vz), pool_v3(0, 0, 0));
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int n;
+	const pool_event *ev = pool_sim_events(sim, &n);
+	const double t1 = (vz + sqrt(vz * vz + 2.0 * g * (z0 - R))) / g;
+	assert_int_equal(ev[0].type, POOL_EVENT_BALL_TABLE);
+	near_rel(ev[0].time, t1, 1e-12);
+	const pool_ball_state *a = pool_sim_event_states(sim, &ev[0]);
+	near_rel(a->pos.x, 0.5 + vx * t1, 1e-12);
+	near_rel(a->vel.x, vx, 1e-12);
+	near_rel(a->vel.z, def.params.e_table * (g * t1 - vz), 1e-12);
+	pool_sim_destroy(sim);
+}
+
+// A jump strike (centre ball, elevation 60 deg, frictionless cloth): the strike's velocity
+// points into the cloth (v_z = -|v| sin theta, PHYSICS.md "Cue strike"); the immediate
+// ball_table impact at t = 0 reverses v_z times e_table and keeps the horizontal velocity; the
+// ball lands 2 v_z' / g later at x0 + vx 2 v_z' / g.
+static void test_jump_strike(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	def.params.mu_table = 0.0;
+	const double g = def.params.g, e = def.params.e_table, theta = 60.0 * M_PI / 180.0;
+	pool_sim *sim = make(&def);
+	add(sim, 0, pool_v3(0.6, 0.635, def.params.ball_radius), pool_v3(0, 0, 0), pool_v3(0, 0, 0));
+	pool_strike s = {3.0, 0.0, theta, 0.0, 0.0};
+	pool_vec3 v, w;
+	assert_int_equal(pool_strike_velocities(&def.params, &s, &v, &w, NULL), POOL_OK);
+	near_rel(v.z, -pool_v3_len(v) * sin(theta), 1e-12);
+	assert_int_equal(pool_sim_strike(sim, 0, &s, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int n;
+	const pool_event *ev = pool_sim_events(sim, &n);
+	assert_true(n >= 3);
+	assert_int_equal(ev[1].type, POOL_EVENT_BALL_TABLE);
+	assert_true(ev[1].time == 0.0);
+	const pool_ball_state *a = pool_sim_event_states(sim, &ev[1]);
+	near_rel(a->vel.z, -e * v.z, 1e-12);
+	near_rel(a->vel.x, v.x, 1e-12);
+	assert_int_equal(ev[2].type, POOL_EVENT_BALL_TABLE);
+	const double flight = -2.0 * e * v.z / g;
+	near_rel(ev[2].time, flight, 1e-12);
+	near_rel(pool_sim_event_states(sim, &ev[2])->pos.x, 0.6 + v.x * flight, 1e-12);
+	pool_sim_destroy(sim);
+}
+
+// The nose line of the north rail is y = W, z = h. A ball flying towards it touches it when its
+// distance to that line in the rail's normal plane, sqrt((W - y)^2 + (z - h)^2), equals R: found
+// here by bisection on the flight's closed form, and the event must come there.
+static void test_nose_contact_in_flight(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	const double R = def.params.ball_radius, g = def.params.g, W = def.table.width, h = def.table.cushion_height;
+	const double y0 = W - 0.1, z0 = 0.05, vy = 2.0, vz = 0.2; // meets the nose 1.3 cm above it
+	pool_sim *sim = make(&def);
+	add(sim, 0, pool_v3(1.0, y0, z0), pool_v3(0, vy, vz), pool_v3(0, 0, 0));
+	assert_int_equal(pool_sim_step(sim), 1);
+	int n;
+	const pool_event *ev = pool_sim_events(sim, &n);
+	double lo = 0.0, hi = 0.1 / vy;
+	for (int i = 0; i < 200; ++i) {
+		const double t = 0.5 * (lo + hi), y = y0 + vy * t, z = z0 + vz * t - 0.5 * g * t * t;
+		if (hypot(W - y, z - h) > R)
+			lo = t;
+		else
+			hi = t;
+	}
+	assert_int_equal(ev[0].type, POOL_EVENT_BALL_CUSHION);
+	assert_int_equal(ev[0].rail, POOL_RAIL_NORTH);
+	near_rel(ev[0].time, lo, 1e-9);
+	// The rebound moves away from the rail and the ball stays on the table.
+	assert_true(pool_sim_event_states(sim, &ev[0])->vel.y < 0.0);
+	pool_sim_destroy(sim);
+}
+
+// Clearing a rail: a ball flying over the east nose higher than R above it leaves the table when
+// its centre crosses the table's edge x = L, at (L - x0) / vx (no horizontal acceleration).
+static void test_off_table(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	const double L = def.table.length;
+	const double x0 = L - 0.3, vx = 3.0, vz = 2.5, z0 = 0.1;
+	pool_sim *sim = make(&def);
+	add(sim, 0, pool_v3(x0, 0.6, z0), pool_v3(vx, 0, vz), pool_v3(0, 0, 0));
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int n;
+	const pool_event *ev = pool_sim_events(sim, &n);
+	assert_int_equal(n, 1);
+	assert_int_equal(ev[0].type, POOL_EVENT_OFF_TABLE);
+	near_rel(ev[0].time, (L - x0) / vx, 1e-12);
+	assert_int_equal(pool_sim_event_states(sim, &ev[0])->motion, POOL_MOTION_OFF_TABLE);
+	assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_REST);
+	pool_sim_destroy(sim);
+}
+
+static double energy(const pool_params *p, const pool_ball_state *s) {
+	return pool_motion_energy(p, s) + p->ball_mass * p->g * (s->pos.z - p->ball_radius);
+}
+
+// A ball falling onto a resting one, off centre: the impact conserves momentum (the impulse is
+// internal; gravity acts over no time), never adds energy, and presses the resting ball into the
+// cloth: a ball_table event at the same instant follows.
+static void test_falling_on_resting(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	const pool_params *p = &def.params;
+	const double R = p->ball_radius;
+	pool_sim *sim = make(&def);
+	add(sim, 1, pool_v3(1.0, 0.6, R), pool_v3(0, 0, 0), pool_v3(0, 0, 0));
+	add(sim, 2, pool_v3(1.0 + 0.6 * R, 0.6, 0.3), pool_v3(0, 0, 0), pool_v3(0, 0, 0));
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int n;
+	const pool_event *ev = pool_sim_events(sim, &n);
+	assert_int_equal(ev[0].type, POOL_EVENT_BALL_BALL);
+	pool_ball_state before[2];
+	assert_int_equal(pool_sim_state_at(sim, ev[0].time * (1.0 - 1e-13), before), POOL_OK);
+	const pool_ball_state *after = pool_sim_event_states(sim, &ev[0]);
+	const pool_vec3 p0 = pool_v3_add(before[0].vel, before[1].vel), p1 = pool_v3_add(after[0].vel, after[1].vel);
+	assert_true(pool_v3_len(pool_v3_sub(p1, p0)) <= 1e-9 * pool_v3_len(p0));
+	assert_true(energy(p, &after[0]) + energy(p, &after[1]) <= energy(p, &before[0]) + energy(p, &before[1]) + 1e-12);
+	assert_int_equal(ev[1].type, POOL_EVENT_BALL_TABLE);
+	assert_true(ev[1].time == ev[0].time);
+	assert_int_equal(pool_sim_event_states(sim, &ev[1])->id, 1);
+	pool_sim_destroy(sim);
+}
+
+static uint64_t rng = 0x243F6A8885A308D3ull;
+static double urand(void) {
+	rng ^= rng << 13;
+	rng ^= rng >> 7;
+	rng ^= rng << 17;
+	return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+#define AIR_SHOTS 500
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define AIR_SHOTS 500
+#endif
+#endif
+#ifndef AIR_SHOTS
+#define AIR_SHOTS 10000
+#endif
+#define MAX_AIR_BALLS 16
+#define SAMPLES_PER_EVENT 4
+/// m: balls may start (racks) and touch within the touch tolerance, plus rounding of positions.
+#define GEOMETRY_TOLERANCE (POOL_TOUCH_TOLERANCE + 1e-12)
+/// Relative rounding of an energy balance (kinetic + potential, a few joules at most).
+#define ENERGY_ROUNDING 1e-11
+
+// One random airborne shot: a rack (frozen or gapped) or a random layout, struck with an
+// elevated cue (0..75 deg) and spin; sometimes balls thrown into the air.
+static int setup_random(pool_sim *sim, const pool_sim_def *def, int shot) {
+	const double R = def->params.ball_radius, L = def->table.length, W = def->table.width;
+	pool_ball_state balls[MAX_AIR_BALLS];
+	int nb;
+	if (shot % 3 == 0) {
+		nb = pool_rack(shot % 2 ? POOL_RACK_8BALL : POOL_RACK_9BALL, &def->table, &def->params, urand() < 0.5 ? 0.0 : 1e-4,
+		               balls, MAX_AIR_BALLS);
+	} else {
+		nb = 2 + (int)(urand() * 8);
+		int placed = 0;
+		for (int tries = 0; placed < nb && tries < 1000; ++tries) {
+			pool_ball_state b;
+			memset(&b, 0, sizeof b);
+			b.id = placed;
+			b.pos = pool_v3(0.1 + urand() * (L - 0.2), 0.1 + urand() * (W - 0.2), R);
+			if (placed > 0 && urand() < 0.2) { // thrown
+				b.pos.z = R + urand() * 0.3;
+				b.vel = pool_v3(urand() * 4 - 2, urand() * 4 - 2, urand() * 3 - 1);
+				b.omega = pool_v3(urand() * 100 - 50, urand() * 100 - 50, urand() * 40 - 20);
+			}
+			int ok = 1;
+			for (int j = 0; j < placed; ++j)
+				ok &= pool_v3_len(pool_v3_sub(b.pos, balls[j].pos)) > 2.0 * R + 1e-3;
+			if (ok)
+				balls[placed++] = b;
+		}
+		nb = placed;
+	}
+	for (int i = 0; i < nb; ++i)
+		if (pool_sim_add_ball(sim, &balls[i], NULL) != POOL_OK)
+			return -1;
+	const double c = R * 0.6;
+	pool_strike s = {0.5 + urand() * 7.5, urand() * 2 * M_PI, urand() * 75.0 * M_PI / 180.0, (urand() * 2 - 1) * c,
+	                 (urand() * 2 - 1) * c};
+	return pool_sim_strike(sim, 0, &s, NULL) == POOL_OK ? nb : -1;
+}
+
+static void sample_geometry(const pool_sim *sim, const pool_sim_def *def, double t, double *overlap, double *under) {
+	pool_ball_state s[MAX_AIR_BALLS];
+	assert_int_equal(pool_sim_state_at(sim, t, s), POOL_OK);
+	const int n = pool_sim_ball_count(sim);
+	const double R = def->params.ball_radius;
+	for (int i = 0; i < n; ++i) {
+		if (s[i].motion == POOL_MOTION_POCKETED || s[i].motion == POOL_MOTION_OFF_TABLE)
+			continue;
+		*under = fmax(*under, R - s[i].pos.z);
+		for (int j = i + 1; j < n; ++j)
+			if (s[j].motion != POOL_MOTION_POCKETED && s[j].motion != POOL_MOTION_OFF_TABLE)
+				*overlap = fmax(*overlap, 2.0 * R - pool_v3_len(pool_v3_sub(s[i].pos, s[j].pos)));
+	}
+}
+
+static void test_random_airborne_shots(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	def.max_events = 20000;
+	const pool_params *p = &def.params;
+	pool_sim *sim = make(&def), *again = make(&def);
+	double worst_overlap = -INFINITY, worst_under = -INFINITY, worst_gain = -INFINITY;
+	long events = 0;
+	int capped = 0, airborne_events = 0;
+	const char *env = getenv("POOL_TEST_AIR_SHOTS");
+	const int shots = env ? atoi(env) : AIR_SHOTS;
+	for (int shot = 0; shot < shots; ++shot) {
+		assert_int_equal(pool_sim_reset(sim, NULL, NULL), POOL_OK);
+		const uint64_t seed = rng;
+		const int nb = setup_random(sim, &def, shot);
+		if (nb < 0)
+			continue;
+		assert_int_equal(pool_sim_run(sim), POOL_OK);
+		int n;
+		const pool_event *ev = pool_sim_events(sim, &n);
+		events += n;
+		capped += pool_sim_stop_reason(sim) == POOL_STOP_MAX_EVENTS;
+		// Energy across every event: the involved balls just before against just after.
+		for (int e = 0; e < n; ++e) {
+			if (ev[e].type == POOL_EVENT_STRIKE || ev[e].type == POOL_EVENT_POCKET || ev[e].type == POOL_EVENT_OFF_TABLE)
+				continue;
+			airborne_events += ev[e].type == POOL_EVENT_BALL_TABLE;
+			const double t = ev[e].time;
+			pool_ball_state all[MAX_AIR_BALLS];
+			// Just before: the previous history entry of each involved ball, evolved to t.
+			const pool_ball_state *after = pool_sim_event_states(sim, &ev[e]);
+			double eb = 0.0, ea = 0.0;
+			for (int k = 0; k < ev[e].ball_count; ++k) {
+				// Find the ball's state before this event: the latest earlier event with it, or the start.
+				pool_ball_state seg;
+				double t0 = 0.0;
+				int found = 0;
+				for (int f = e - 1; f >= 0 && !found; --f) {
+					const pool_ball_state *a = pool_sim_event_states(sim, &ev[f]);
+					for (int q = 0; q < ev[f].ball_count; ++q)
+						if (a[q].id == after[k].id) {
+							seg = a[q];
+							t0 = ev[f].time;
+							found = 1;
+						}
+				}
+				if (!found) {
+					assert_int_equal(pool_sim_state_at(sim, 0.0, all), POOL_OK);
+					for (int q = 0; q < nb; ++q)
+						if (all[q].id == after[k].id)
+							seg = all[q];
+				}
+				pool_ball_state before;
+				pool_motion_evolve(p, &seg, t - t0, &before);
+				eb += energy(p, &before);
+				ea += energy(p, &after[k]);
+			}
+			if (!(pool_sim_event_flags(sim, e) & POOL_EVENT_FLAG_FLOOR))
+				worst_gain = fmax(worst_gain, ea - eb - ENERGY_ROUNDING * fmax(eb, 1.0));
+			else if (!(ea - eb <= pool_floor_energy_bound(p) + ENERGY_ROUNDING * fmax(eb, 1.0)))
+				fail_msg("shot %d event %d: floored event adds %.3g J", shot, e, ea - eb);
+			const double tb = e + 1 < n ? ev[e + 1].time : t;
+			for (int k = 0; k <= SAMPLES_PER_EVENT; ++k)
+				sample_geometry(sim, &def, t + (tb - t) * k / SAMPLES_PER_EVENT, &worst_overlap, &worst_under);
+		}
+		if (shot % 50 == 0) { // determinism: the same shot again, bit for bit
+			const uint64_t after_rng = rng;
+			rng = seed;
+			assert_int_equal(pool_sim_reset(again, NULL, NULL), POOL_OK);
+			assert_int_equal(setup_random(again, &def, shot), nb);
+			rng = after_rng;
+			assert_int_equal(pool_sim_run(again), POOL_OK);
+			int n2;
+			const pool_event *ev2 = pool_sim_events(again, &n2);
+			assert_int_equal(n, n2);
+			assert_memory_equal(ev, ev2, sizeof *ev * (size_t)n);
+		}
+		if (worst_gain > 0.0 || worst_overlap > GEOMETRY_TOLERANCE || worst_under > GEOMETRY_TOLERANCE)
+			fail_msg("shot %d: energy gain %.3g J, overlap %.3g m, under the cloth %.3g m", shot, worst_gain, worst_overlap,
+			         worst_under);
+	}
+	printf("airborne random shots: %d, events %ld (%d ball_table), max_events stops %d, worst overlap %.3g m, worst "
+	       "depth under the cloth %.3g m, worst energy gain %.3g J\n",
+	       shots, events, airborne_events, capped, worst_overlap, worst_under, worst_gain);
+	assert_true(airborne_events > shots); // the campaign does fly
+	assert_true(capped <= shots / 100);    // bounded: almost every shot ends at rest
+	pool_sim_destroy(sim);
+	pool_sim_destroy(again);
+}
+
+int main(void) {
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_drop),
+		cmocka_unit_test(test_throw_landing),
+		cmocka_unit_test(test_jump_strike),
+		cmocka_unit_test(test_nose_contact_in_flight),
+		cmocka_unit_test(test_off_table),
+		cmocka_unit_test(test_falling_on_resting),
+		cmocka_unit_test(test_random_airborne_shots),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
