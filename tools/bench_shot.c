@@ -118,6 +118,8 @@ int main(int argc, char **argv) {
 			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
 			       "  post-break        random strikes (0.5-6 m/s, spin, elevation) on the tables\n"
 			       "                    that breaks leave\n"
+			       "  jump (airborne)   a 5 m/s cue at 45 deg clearing a blocking ball\n"
+			       "  break (airborne)  the 0.1 mm break with the cue elevated 5 deg, airborne motion\n"
 			       "Prints median and minimum time per shot over N runs (default 2000), events per\n"
 			       "second, the library's peak heap bytes and allocation count before and after the\n"
 			       "runs (they must not grow), the process's peak resident memory, and the machine.\n");
@@ -198,7 +200,27 @@ int main(int argc, char **argv) {
 	pool_bench_summarise(times, (size_t)runs * 5);      // sorting allocates glibc's qsort buffer too
 	printf("measuring...\n");
 	fflush(stdout);
+	// Airborne motion: the same machinery with flight segments and ball-cloth impacts.
+	pool_sim_def air_def = def;
+	air_def.airborne = true;
+	pool_sim *air;
+	if (pool_sim_create(&air_def, &air, &err) != POOL_OK) {
+		fprintf(stderr, "pool-bench-shot: %s\n", err.message);
+		return 1;
+	}
+	shot jump = {0};
+	jump.n = 3;
+	const double ids_x[3] = {0.6, 0.85, 1.9};
+	for (int i = 0; i < 3; ++i) {
+		jump.balls[i].id = i;
+		jump.balls[i].pos = (pool_vec3){ids_x[i], 0.635, R};
+	}
+	jump.strike = (pool_strike){5.0, 0.0, 45.0 * 3.14159265358979323846 / 180.0, 0.0, 0.0};
+	shot air_break = gap;
+	air_break.strike.theta = 5.0 * 3.14159265358979323846 / 180.0;
 	int ev;
+	run(air, &jump, &ev); // warm up both simulations before the heap baseline
+	run(air, &air_break, &ev);
 	run(sim, &frozen, &ev);
 	for (int i = 0; i < count; ++i)
 		run(sim, &post[i], &ev);
@@ -208,10 +230,14 @@ int main(int argc, char **argv) {
 	    measure(sim, "break-gap-0.1mm (8 m/s)", &gap, 1, runs, times) ||
 	    measure(sim, "post-break random shots", post, count, runs * 5, times))
 		return 1;
+	if (measure(air, "jump (airborne, 5 m/s, 45 deg)", &jump, 1, runs, times) ||
+	    measure(air, "break-gap-0.1mm (airborne, 5 deg)", &air_break, 1, runs, times))
+		return 1;
+	pool_sim_destroy(air);
 	long rss_after = maxrss_kib();
 	printf("library heap: peak %zu bytes after warm-up, %zu bytes after %d more shots (one pool_sim reused); "
 	       "library allocations during the runs: %ld\n",
-	       peak_before, lib_peak_bytes, runs * 7, lib_allocs - allocs_before);
+	       peak_before, lib_peak_bytes, runs * 9, lib_allocs - allocs_before);
 	printf("process peak resident memory (getrusage, includes the benchmark's own buffers): %ld KiB after "
 	       "warm-up, %ld KiB after the runs\n",
 	       rss_before, rss_after);

@@ -15,7 +15,7 @@ from pool_lcm import event_t, shot_t, table_state_t  # noqa: E402
 pool_sim = os.path.join(args.bin_dir, "pool-sim")
 env = dict(os.environ, LCM_DEFAULT_URL="memq://")  # --lcm-url must win over the environment
 
-for name in ("short", "cut", "bank", "break"):
+for name in ("short", "cut", "bank", "break", "jump"):  # jump: airborne, clears ball 1
     scenario = os.path.join(args.data_dir, name + ".json")
     want = u.pool_sim_json(args.bin_dir, scenario, args.work_dir)
     sub = subprocess.Popen([sys.executable, args.subscriber, "--lcm-url", u.URL, "--types-dir",

@@ -109,10 +109,10 @@ class ClosedForms(unittest.TestCase):
 class AgainstPoolSim(unittest.TestCase):
     """Python and pool-sim give the same event list, bit for bit, for the same scenario."""
 
-    def compare(self, kind, gap, speed, phi=0.0, theta=0.0, a=0.0, b=0.0, use_break=False):
+    def compare(self, kind, gap, speed, phi=0.0, theta=0.0, a=0.0, b=0.0, use_break=False, airborne=False):
         if not ARGS.pool_sim:
             self.skipTest("pool-sim not built")
-        with libpool.Sim() as sim:
+        with libpool.Sim(airborne=airborne) as sim:
             balls = sim.rack(kind, gap=gap)
             if use_break:
                 sim.break_strike(speed)
@@ -125,8 +125,10 @@ class AgainstPoolSim(unittest.TestCase):
             "balls": [{"id": x.id, "pos": list(x.pos)} for x in balls],
             "strike": {"ball": 0, "speed": speed, "phi": phi, "theta": theta, "a": a, "b": b},
         }
+        if airborne:
+            scenario["options"] = {"airborne": True}
         os.makedirs(ARGS.work, exist_ok=True)
-        path = os.path.join(ARGS.work, f"{kind}_{speed}.json")
+        path = os.path.join(ARGS.work, f"{kind}_{speed}_{int(airborne)}.json")
         with open(path, "w") as f:
             json.dump(scenario, f)
         res = json.loads(subprocess.run([ARGS.pool_sim, path], check=True, capture_output=True,
@@ -151,6 +153,11 @@ class AgainstPoolSim(unittest.TestCase):
     def test_9ball_with_spin_and_angles(self):
         # Degrees convert exactly as the scenario parser converts them.
         self.compare("9ball", 1e-4, 6.5, phi=1.3, theta=4.0, a=0.004, b=-0.006)
+
+    def test_airborne_break(self):
+        # Sim(airborne=True): an elevated break (the cue ball driven into the cloth hops into the
+        # rack) gives pool-sim's airborne event list, ball_table events and airborne states included.
+        self.compare("9ball", 1e-4, 7.0, theta=12.0, b=0.005, airborne=True)
 
 
 class Errors(unittest.TestCase):
