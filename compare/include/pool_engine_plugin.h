@@ -43,6 +43,10 @@ typedef enum pool_engine_event_type {
 	POOL_ENGINE_EVENT_SLIDE_ROLL = 1,   ///< slip fell below the rolling threshold
 	POOL_ENGINE_EVENT_ROLL_STOP = 2,    ///< speed fell to zero / below the rest threshold
 	POOL_ENGINE_EVENT_POCKET = 7,       ///< ball fell into a pocket
+	/// A flying ball lands on the cloth (or a strike or cushion presses it into the cloth):
+	/// first step of a new ball-cloth contact approaching it; ball_b = -1. Airborne mode only.
+	/// Added without changing the ABI version: plugins that never report it are as before.
+	POOL_ENGINE_EVENT_BALL_TABLE = 6,
 } pool_engine_event_type;
 
 /// An event as an engine detected it.

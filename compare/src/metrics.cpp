@@ -26,6 +26,9 @@ bool is_collision(int type) {
 	return type == POOL_ENGINE_EVENT_BALL_BALL || type == POOL_ENGINE_EVENT_BALL_CUSHION;
 }
 
+// Events around which directions and energies are not compared: collisions and landings.
+bool is_impact(int type) { return is_collision(type) || type == POOL_ENGINE_EVENT_BALL_TABLE; }
+
 // What a collision is about, independent of its time: the ball pair, or the ball and the cushion
 // (its rail, POOL_ENGINE_CUSHION) when `rails`, else the ball and "a cushion".
 using CollisionKey = std::tuple<int, int, int>;
@@ -72,7 +75,7 @@ std::vector<TimeWindow> collision_windows(const std::vector<Event> &reference, c
 	// Each reference collision with the engine's nearest one of the same key: between the two,
 	// one side has had the collision and the other not yet.
 	for (const Event &r : reference) {
-		if (!is_collision(r.type))
+		if (!is_impact(r.type))
 			continue;
 		const CollisionKey k = key_of(r, rails);
 		double lo = r.t, hi = r.t;
@@ -80,7 +83,7 @@ std::vector<TimeWindow> collision_windows(const std::vector<Event> &reference, c
 		// A counterpart further away than kMaxCollisionLag is another collision (the engine
 		// missed this one): skipping everything in between would hide where outcomes diverge.
 		for (const Event &e : engine)
-			if (is_collision(e.type) && key_of(e, rails) == k && std::fabs(e.t - r.t) <= kMaxCollisionLag &&
+			if (is_impact(e.type) && key_of(e, rails) == k && std::fabs(e.t - r.t) <= kMaxCollisionLag &&
 			    (!match || std::fabs(e.t - r.t) < std::fabs(match->t - r.t)))
 				match = &e;
 		if (match) {
@@ -91,7 +94,7 @@ std::vector<TimeWindow> collision_windows(const std::vector<Event> &reference, c
 	}
 	// Every engine collision (phantoms included).
 	for (const Event &e : engine)
-		if (is_collision(e.type))
+		if (is_impact(e.type))
 			windows.push_back({e.t - guard, e.t + guard});
 	return windows;
 }
@@ -148,6 +151,29 @@ double max_position_error(const std::vector<BallSample> &engine, const std::vect
 		worst = std::max(worst, e ? planar_distance(e->pos, r.pos) : std::numeric_limits<double>::infinity());
 	}
 	return worst;
+}
+
+void compare_landings(const std::vector<Event> &engine, const Reference &ref, Record *rec) {
+	std::map<int, std::vector<double>> ref_times, eng_times;
+	for (const Event &e : ref.events)
+		if (e.type == POOL_ENGINE_EVENT_BALL_TABLE)
+			ref_times[e.ball_a].push_back(e.t);
+	for (const Event &e : engine)
+		if (e.type == POOL_ENGINE_EVENT_BALL_TABLE && (ref.at_rest || e.t <= ref.end_time + 1e-9))
+			eng_times[e.ball_a].push_back(e.t);
+	rec->landings_reference = rec->landings_engine = 0;
+	rec->landing_time_error = kNone;
+	for (const auto &[ball, list] : ref_times)
+		rec->landings_reference += static_cast<int>(list.size());
+	for (const auto &[ball, list] : eng_times)
+		rec->landings_engine += static_cast<int>(list.size());
+	for (const auto &[ball, list] : ref_times) {
+		auto it = eng_times.find(ball);
+		if (it == eng_times.end())
+			continue;
+		for (size_t k = 0; k < list.size() && k < it->second.size(); ++k)
+			rec->landing_time_error = max_or_none(rec->landing_time_error, std::fabs(it->second[k] - list[k]));
+	}
 }
 
 int pocket_mismatches(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference) {

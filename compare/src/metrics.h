@@ -58,6 +58,15 @@ struct Record {
 
 	int engine_messages = 0;         ///< lines the engine printed (kept in DIR/engines.log)
 
+	// Airborne motion (PHYSICS.md "Airborne", "Ball-cloth"): landings on the cloth, matched in
+	// order per ball (the k-th landing of a ball in the engine with its k-th in the reference).
+	int landings_reference = 0;           ///< landings (BALL_TABLE events) of the reference
+	int landings_engine = 0;              ///< landings the engine reported
+	double landing_time_error = kNone;    ///< s, max over the matched landings
+	double landing_position_error = kNone; ///< m, max xy distance at the reference's landing instants
+	double bounce_height_error = kNone;   ///< m, max |z - z_ref| at the reference's apex instants
+	std::string reference_error;          ///< why there is no reference (reference "none")
+
 	int spread_runs = 0;             ///< perturbed runs (0: not measured)
 	double spread_perturbation = kNone; ///< m, displacement of the lead ball in each run
 	double spread_rms = kNone;       ///< m, RMS over runs and balls of the final-position change
@@ -113,6 +122,10 @@ double max_position_error(const std::vector<BallSample> &engine, const std::vect
 
 /// Fills the event fields of a record (times, missed and phantom collisions).
 void compare_events(const std::vector<Event> &engine, const Reference &reference, Record *record);
+
+/// Fills landings_reference, landings_engine and landing_time_error: each ball's k-th landing
+/// (BALL_TABLE event) in the engine against its k-th in the reference, for every k both have.
+void compare_landings(const std::vector<Event> &engine, const Reference &reference, Record *record);
 
 /// Balls pocketed (or off the table) in one state but not in the other.
 int pocket_mismatches(const std::vector<BallSample> &engine, const std::vector<BallSample> &reference);

@@ -58,7 +58,15 @@ public:
 			                ? POOL_ENGINE_CUSHION(list[i].rail)
 			                : -1;
 			events.push_back(ev);
+			if (type == POOL_ENGINE_EVENT_BALL_TABLE && list[i].ball_count > 0) {
+				const pool_ball_state &b = after[0];
+				landings.push_back({ev.t, b.id, Eigen::Vector3d(b.pos.x, b.pos.y, b.pos.z)});
+				const double g = scenario.parsed.def.params.g;
+				if (b.motion == POOL_MOTION_AIRBORNE && b.vel.z > 0.0 && ev.t + b.vel.z / g <= max_time)
+					apexes.push_back({ev.t + b.vel.z / g, b.id, b.pos.z + b.vel.z * b.vel.z / (2.0 * g)});
+			}
 		}
+		std::stable_sort(apexes.begin(), apexes.end(), [](const Apex &a, const Apex &b) { return a.t < b.t; });
 		return true;
 	}
 
@@ -90,6 +98,7 @@ int abi_event_type(int libpool_type) {
 	case POOL_EVENT_BALL_BALL: return POOL_ENGINE_EVENT_BALL_BALL;
 	case POOL_EVENT_BALL_CUSHION: return POOL_ENGINE_EVENT_BALL_CUSHION;
 	case POOL_EVENT_POCKET: return POOL_ENGINE_EVENT_POCKET;
+	case POOL_EVENT_BALL_TABLE: return POOL_ENGINE_EVENT_BALL_TABLE;
 	default: return -1;
 	}
 }

@@ -58,6 +58,14 @@ json_t *record_object(const Record &r) {
 	json_object_set_new(o, "error", r.error.empty() ? json_null() : json_string(r.error.c_str()));
 	json_object_set_new(o, "outcome", json_string(r.outcome.c_str()));
 	json_object_set_new(o, "wall_seconds", number_or_null(r.wall_seconds));
+	// Airborne motion (landings on the cloth):
+	json_object_set_new(o, "landing_time_error", number_or_null(r.landing_time_error));
+	json_object_set_new(o, "landing_position_error", number_or_null(r.landing_position_error));
+	json_object_set_new(o, "bounce_height_error", number_or_null(r.bounce_height_error));
+	json_object_set_new(o, "landings_reference", json_integer(r.landings_reference));
+	json_object_set_new(o, "landings_engine", json_integer(r.landings_engine));
+	json_object_set_new(o, "reference_error",
+	                    r.reference_error.empty() ? json_null() : json_string(r.reference_error.c_str()));
 	return o;
 }
 
@@ -263,6 +271,7 @@ bool record_from_wire(const std::string &text, Record *out, std::string *error) 
 	r.reference = get_string(o, "reference");
 	r.error = get_string(o, "error");
 	r.outcome = get_string(o, "outcome");
+	r.reference_error = get_string(o, "reference_error");
 	r.event_driven = json_is_true(json_object_get(o, "event_driven"));
 	r.cushions_by_rail = json_is_true(json_object_get(o, "cushions_by_rail"));
 	struct {
@@ -287,7 +296,10 @@ bool record_from_wire(const std::string &text, Record *out, std::string *error) 
 	               {"spread_rms", &Record::spread_rms},
 	               {"spread_max", &Record::spread_max},
 	               {"consistency_error", &Record::consistency_error},
-	               {"wall_seconds", &Record::wall_seconds}};
+	               {"wall_seconds", &Record::wall_seconds},
+	               {"landing_time_error", &Record::landing_time_error},
+	               {"landing_position_error", &Record::landing_position_error},
+	               {"bounce_height_error", &Record::bounce_height_error}};
 	for (const auto &n : numbers)
 		r.*n.field = get_number(o, n.key);
 	struct {
@@ -302,7 +314,9 @@ bool record_from_wire(const std::string &text, Record *out, std::string *error) 
 	                {"collisions_engine", &Record::collisions_engine},
 	                {"pocket_mismatches", &Record::pocket_mismatches},
 	                {"engine_messages", &Record::engine_messages},
-	                {"spread_runs", &Record::spread_runs}};
+	                {"spread_runs", &Record::spread_runs},
+	                {"landings_reference", &Record::landings_reference},
+	                {"landings_engine", &Record::landings_engine}};
 	for (const auto &n : integers)
 		r.*n.field = static_cast<int>(get_integer(o, n.key));
 	r.steps = get_integer(o, "steps");
@@ -381,7 +395,9 @@ std::string results_table(const std::vector<Record> &records, bool markdown) {
 		const std::string engine =
 		    markdown && r.engine_messages > 0 ? r.engine + " †" + std::to_string(r.engine_messages) : r.engine;
 		const std::string reference =
-		    markdown && r.simultaneous_contacts > 0 && r.reference == "libpool" ? r.reference + " ‡" : r.reference;
+		    r.reference == "none" ? "no reference"
+		    : markdown && r.simultaneous_contacts > 0 && r.reference == "libpool" ? r.reference + " ‡"
+		                                                                          : r.reference;
 		rows.push_back({r.scenario, engine, r.event_driven ? "event" : fmt(r.dt, "%.0e"), fmt(r.speed()),
 		                fmt(r.final_position_error, "%.2e"), fmt(r.event_time_error, "%.2e"),
 		                fmt(r.direction_error_deg, "%.2g"), fmt(r.energy_error, "%.2e"),
@@ -390,6 +406,32 @@ std::string results_table(const std::vector<Record> &records, bool markdown) {
 		                reference});
 	}
 	// Names, the dt and the reference read left; the numbers right.
+	std::string align(head.size(), 'r');
+	align[0] = align[1] = align.back() = 'l';
+	return render_table(head, rows, markdown, align, align);
+}
+
+std::string landing_table(const std::vector<Record> &records, bool markdown) {
+	const std::vector<std::string> head = {"scenario", "engine", "dt (s)", "landings (ref / engine)",
+	                                       "landing t err (s)", "landing pos err (m)", "bounce height err (m)",
+	                                       "reference"};
+	std::vector<std::vector<std::string>> rows;
+	for (const Record &r : records) {
+		if (r.landings_reference == 0 && r.landings_engine == 0)
+			continue;
+		if (!r.error.empty() && !std::isfinite(r.cpu_seconds)) {
+			rows.push_back({r.scenario, r.engine, r.event_driven ? "event" : fmt(r.dt, "%.0e"), "failed: " + r.error});
+			continue;
+		}
+		const bool truth = r.reference != "none";
+		rows.push_back({r.scenario, r.engine, r.event_driven ? "event" : fmt(r.dt, "%.0e"),
+		                (truth ? std::to_string(r.landings_reference) : std::string("-")) + " / " +
+		                    std::to_string(r.landings_engine),
+		                fmt(r.landing_time_error, "%.2e"), fmt(r.landing_position_error, "%.2e"),
+		                fmt(r.bounce_height_error, "%.2e"), truth ? r.reference : "no reference"});
+	}
+	if (rows.empty())
+		return "";
 	std::string align(head.size(), 'r');
 	align[0] = align[1] = align.back() = 'l';
 	return render_table(head, rows, markdown, align, align);
@@ -443,7 +485,9 @@ std::string accuracy_summary(const std::vector<Record> &records, double toleranc
 			if (std::isfinite(o->final_position_error) && (!best || o->final_position_error < best->final_position_error))
 				best = o;
 		std::string where, ratio = "-";
-		if (reached) {
+		if (r.reference == "none") {
+			where = "no reference";
+		} else if (reached) {
 			where = "dt " + fmt(reached->dt, "%.0e") + " (" + fmt(reached->final_position_error, "%.2g") + " m, " +
 			        fmt(reached->speed(), "%.3g") + " sim s / CPU s)";
 			if (libpool)
@@ -496,6 +540,30 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 	    << ". Every field is in `results.json` / `results.csv`.\n\n";
 	out << results_table(records, true) << "\n";
 	out << footnotes(records) << "\n";
+	const std::string flights = landing_table(records, true);
+	if (!flights.empty())
+		out << "## Flight and landing (airborne scenarios)\n\nLandings are ball-cloth contacts of a flying "
+		       "ball (`BALL_TABLE` events), matched in order per ball: `landing t err` is the largest time "
+		       "difference of the k-th landing in engine and reference, `landing pos err` the largest xy "
+		       "distance at the reference's landing instants, `bounce height err` the largest height "
+		       "difference at the reference's apex instants (states at the step the engine reached). The "
+		       "closed form settles a rebound that would fly less than 1 ms.\n\n"
+		    << flights << "\n";
+	std::vector<std::string> missing;
+	for (const Record &r : records)
+		if (r.reference == "none" && std::find(missing.begin(), missing.end(), r.scenario) == missing.end())
+			missing.push_back(r.scenario);
+	if (!missing.empty()) {
+		out << "## Scenarios without a reference\n\nThese ran on every engine but nothing is scored (no "
+		       "closed form applies and the libpool reference failed); their rows say `no reference`:\n\n";
+		for (const std::string &name : missing)
+			for (const Record &r : records)
+				if (r.scenario == name) {
+					out << "- `" << name << "`: " << r.reference_error << "\n";
+					break;
+				}
+		out << "\n";
+	}
 	out << "## Speed at equal accuracy\n\nThe largest swept time step from which on each time-stepped engine's final "
 	       "positions stay within 1 mm of the reference, and libpool's speed over the engine's there. "
 	       "`consistency_error` in results.json separates the discretisation error (against the engine's own "

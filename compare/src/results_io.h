@@ -28,6 +28,9 @@ bool write_results_csv(const std::string &path, const std::vector<Record> &recor
 /// The readable table; markdown = true gives a markdown table.
 std::string results_table(const std::vector<Record> &records, bool markdown);
 
+/// The flight and landing table of the airborne runs ("" when no run has a landing).
+std::string landing_table(const std::vector<Record> &records, bool markdown);
+
 /// Sets consistency_error: each time-stepped run's final positions against the same engine's
 /// run at its finest time step in the same scenario (the discretisation part of the error).
 void fill_consistency(std::vector<Record> *records);

@@ -197,6 +197,7 @@ Record blank_record(const Scenario &scenario, const Reference &ref, const Plugin
 	rec.engine = api->name ? api->name : "";
 	rec.description = api->description ? api->description : "";
 	rec.reference = ref.kind();
+	rec.reference_error = ref.why_none();
 	rec.event_driven = api->event_driven != 0;
 	rec.dt = rec.event_driven ? kNone : settings.dt;
 	return rec;
@@ -216,6 +217,9 @@ std::vector<double> sample_times(const Reference &ref, int max_samples) {
 		if (is_collision(e.type) && e.t + 0.03 < ref.end_time)
 			times.push_back(e.t + 0.03);
 	}
+	for (const Apex &a : ref.apexes)
+		if (a.t > 0.0 && a.t < ref.end_time)
+			times.push_back(a.t);
 	std::sort(times.begin(), times.end());
 	times.erase(std::unique(times.begin(), times.end()), times.end());
 	if (max_samples > 1 && static_cast<int>(times.size()) > max_samples - 1) {
@@ -240,13 +244,36 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 	// is compared with the reference at the time the engine actually reached.
 	std::vector<double> cpu_times;
 	std::vector<BallSample> final_balls;
-	{
+	if (!ref.has_truth()) {
+		// No ground truth: run the shot to max_time and keep what the engine says about itself
+		// (cost, steps, its events and penetration); nothing is scored.
+		EngineRun run(api);
+		if (!run.create(scenario.json, settings.dt, &rec.error) || !run.finish(ref, max_time, &rec.error))
+			return rec;
+		if (!run.balls(scenario, &final_balls, &rec.error))
+			return invalid(&rec, engine_time(run.stats(), ref.end_time));
+		std::vector<Event> engine_events;
+		const pool_engine_stats stats = run.stats();
+		if (!run.events(&engine_events, &rec.error))
+			return invalid(&rec, engine_time(stats, ref.end_time));
+		rec.setup_cpu_seconds = run.setup_cpu;
+		cpu_times.push_back(run.cpu);
+		rec.sim_seconds = stats.sim_time;
+		rec.steps = stats.steps;
+		rec.final_balls = final_balls;
+		rec.max_penetration = std::max(0.0, stats.max_penetration);
+		for (const Event &e : engine_events) {
+			rec.collisions_engine += is_collision(e.type);
+			rec.landings_engine += e.type == POOL_ENGINE_EVENT_BALL_TABLE;
+		}
+	} else {
 		EngineRun run(api);
 		if (!run.create(scenario.json, settings.dt, &rec.error))
 			return rec;
 		struct Sample {
 			double t;
 			std::vector<BallSample> engine, reference;
+			double asked; ///< the sample instant asked for (t is the step the engine reached)
 		};
 		std::vector<Sample> samples;
 		for (double t : sample_times(ref, settings.max_samples)) {
@@ -256,7 +283,36 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 			std::vector<BallSample> balls;
 			if (!run.balls(scenario, &balls, &rec.error))
 				return invalid(&rec, reached);
-			samples.push_back({reached, std::move(balls), ref.state_at(reached)});
+			samples.push_back({reached, std::move(balls), ref.state_at(reached), t});
+		}
+		// Airborne: positions at the reference's landing instants (xy) and heights at its apex
+		// instants, engine and reference compared at the step the engine reached.
+		auto ball_in = [](const std::vector<BallSample> &list, int id) -> const BallSample * {
+			for (const BallSample &b : list)
+				if (b.id == id)
+					return &b;
+			return nullptr;
+		};
+		for (const Sample &sample : samples) {
+			for (const Landing &l : ref.landings) {
+				if (l.t != sample.asked)
+					continue;
+				const BallSample *e = ball_in(sample.engine, l.ball), *r = ball_in(sample.reference, l.ball);
+				if (e && r)
+					rec.landing_position_error = std::isnan(rec.landing_position_error)
+					                                 ? (e->pos - r->pos).head<2>().norm()
+					                                 : std::max(rec.landing_position_error,
+					                                            (e->pos - r->pos).head<2>().norm());
+			}
+			for (const Apex &a : ref.apexes) {
+				if (a.t != sample.asked)
+					continue;
+				const BallSample *e = ball_in(sample.engine, a.ball), *r = ball_in(sample.reference, a.ball);
+				if (e && r)
+					rec.bounce_height_error = std::isnan(rec.bounce_height_error)
+					                              ? std::fabs(e->pos.z() - r->pos.z())
+					                              : std::max(rec.bounce_height_error, std::fabs(e->pos.z() - r->pos.z()));
+			}
 		}
 		if (!run.finish(ref, max_time, &rec.error))
 			return rec;
@@ -269,7 +325,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 		const double t_end = ref.at_rest ? ref.end_time : engine_time(stats, ref.end_time);
 		const std::vector<BallSample> ref_final = ref.state_at(t_end);
 		samples.push_back({ref.at_rest ? std::max(ref.end_time, engine_time(stats, ref.end_time)) : t_end,
-		                   final_balls, ref_final});
+		                   final_balls, ref_final, t_end});
 		std::vector<Event> engine_events;
 		if (!run.events(&engine_events, &rec.error))
 			return invalid(&rec, engine_time(stats, ref.end_time));
@@ -290,6 +346,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 		rec.max_penetration = std::max({0.0, stats.max_penetration, errors.penetration});
 		rec.pocket_mismatches = pocket_mismatches(final_balls, ref_final);
 		compare_events(engine_events, ref, &rec);
+		compare_landings(engine_events, ref, &rec);
 		if (errors.missing_balls)
 			rec.error = "the engine did not report every ball";
 	}

@@ -247,5 +247,49 @@ else
 	fail "--in-process run exited $?: $(cat "$WORK/err")"
 fi
 
+# Airborne scenarios (compare/scenarios/airborne, not in the default set): drop has the airborne
+# closed form, jump has none and, while libpool refuses airborne motion, no reference either:
+# its engines still run, its rows say "no reference", the harness exits 1 (libpool's rows fail),
+# and the landing fields are in results.json and report.md. Once libpool simulates airborne
+# motion, jump's reference is libpool and the harness exits 0.
+ENGS=libpool
+[ -e "$PLUGINS/libpool_engine_ode.so" ] && ENGS=$ENGS,ode
+"$BIN" --engines "$ENGS" --plugin-dir "$PLUGINS" --scenario "$SCEN/airborne/drop.json" "$SCEN/airborne/jump.json" \
+	--dt 1e-3 --out "$WORK/airborne" --no-plots --quiet >"$WORK/out" 2>"$WORK/err"
+status=$?
+"$PY" - "$WORK/airborne" "$status" "$ENGS" <<'PY' || fail "airborne scenarios: $(cat "$WORK/err")"
+import json, sys
+out, status, engines = sys.argv[1], int(sys.argv[2]), sys.argv[3].split(",")
+rows = json.load(open(out + "/results.json"))
+assert [(r["scenario"], r["engine"]) for r in rows] == [(s, e) for s in ("drop", "jump") for e in engines], rows
+for r in rows:
+    if r["error"] is not None and r["engine"] == "libpool":
+        continue  # an error row (libpool refusing airborne motion) holds no measurements
+    for key in ("landing_time_error", "landing_position_error", "bounce_height_error", "landings_reference",
+                "landings_engine", "reference_error"):
+        assert key in r, key
+lib = {r["scenario"]: r for r in rows if r["engine"] == "libpool"}
+supported = lib["drop"]["error"] is None
+if not supported:
+    assert "airborne" in lib["drop"]["error"] and status == 1, (lib["drop"]["error"], status)
+report = open(out + "/report.md").read()
+for r in rows:
+    if r["scenario"] == "drop":
+        assert r["reference"] == "closed-form", r
+        assert r["error"] is not None or r["landings_reference"] == 9, r
+        if r["engine"] == "ode":
+            assert r["error"] is None and 0 <= r["landing_time_error"] <= 6e-3 and r["landings_engine"] >= 5, r
+    elif not supported:
+        assert r["reference"] == "none" and "airborne" in r["reference_error"], r
+        if r["engine"] == "ode":
+            assert r["error"] is None and r["final_position_error"] is None and r["cpu_seconds"] > 0, r
+    else:
+        assert r["reference"] == "libpool", r
+if not supported:
+    assert "no reference" in report and "Scenarios without a reference" in report, report
+assert "Flight and landing" in report, report
+print("ok: airborne drop scored against its closed form, jump without reference runs and says so")
+PY
+
 [ "$failures" -eq 0 ] && echo "passed" || echo "FAILED: $failures"
 exit $((failures > 0))

@@ -120,6 +120,13 @@ Settings default_settings() {
 	s.rest_spin = 1e-4;
 	s.release_gap = 1e-6;
 	s.cloth_gap = 1e-5;
+	// Airborne mode: a cloth contact whose ball moves down faster than 0.1 mm/s is a landing
+	// (an impact: Petit's law with e_table and mu_table); landings too slow for the rebound to
+	// fly pool_plugin::kSettleFlightTime (1 ms) settle (restitution 0): the harness's closed
+	// form and libpool's rule. settle_speed is set per scenario in build() (9.81 mm/s at the
+	// defaults).
+	s.impact_speed = 1e-4;
+	s.settle_speed = 0.0;
 	s.solver_iterations = 10;
 	return s;
 }
@@ -177,6 +184,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	settings_ = default_settings();
 	params_ = scenario.def.params;
 	airborne_ = scenario.def.airborne;
+	settings_.settle_speed = pool_plugin::settle_landing_speed(params_);
 	dt_ = dt;
 	const double R = params_.ball_radius, m = params_.ball_mass;
 	settings_.capsule_radius = 0.5 * R;
@@ -356,6 +364,9 @@ void Engine::apply_torques() {
 	for (auto &b : balls_) {
 		if (!b->active || !on_cloth(*b))
 			continue;
+		// A landing is an impact: no rolling resistance or spin friction in it (libpool's has none).
+		if (airborne_ && std::fabs(b->body->getLinearVelocity().z()) > settings_.impact_speed)
+			continue;
 		btRigidBody *body = b->body.get();
 		const btVector3 v = body->getLinearVelocity(), w = body->getAngularVelocity();
 		btVector3 torque(0, 0, 0);
@@ -420,6 +431,8 @@ void Engine::before_solve() {
 	// does), and on a frictionless cloth in airborne mode (where the cloth's support is real).
 	std::fill(impact_.begin(), impact_.end(), 0);
 	const int count = dispatcher_->getNumManifolds();
+	if (airborne_)
+		landings();
 	for (int k = 0; k < count; ++k) {
 		const btPersistentManifold *mf = dispatcher_->getManifoldByIndexInternal(k);
 		const Material *a = material_of(mf->getBody0()), *b = material_of(mf->getBody1());
@@ -456,6 +469,48 @@ void Engine::before_solve() {
 			for (int j = 0; j < mf->getNumContacts(); ++j)
 				mf->getContactPoint(j).m_combinedFriction = 0.0;
 	}
+}
+
+void Engine::landings() {
+	// Airborne mode: a ball touching the cloth while moving down is landing, an impact that
+	// libpool resolves with Petit's law (n = k, e_table, mu_table). Bullet's contact with
+	// restitution e and Coulomb friction mu (sticking when the friction impulse suffices) is that
+	// law for one contact, given the pair's coefficients for this step: mu_table instead of the
+	// rolling cloth's mu_slide, and e_table only above settle_speed (a slower landing settles,
+	// restitution 0, as the closed form's 1 ms rule). A ball resting or rolling on the cloth
+	// keeps mu_slide and restitution 0. A new touching cloth contact of a descending ball is a
+	// BALL_TABLE event, stamped like the other contacts with the time of the state in which it
+	// was found (the start of this step).
+	const double t = double(steps_) * dt_;
+	std::vector<uint8_t> touching(balls_.size(), 0);
+	const int count = dispatcher_->getNumManifolds();
+	for (int k = 0; k < count; ++k) {
+		btPersistentManifold *mf = dispatcher_->getManifoldByIndexInternal(k);
+		const Material *a = material_of(mf->getBody0()), *b = material_of(mf->getBody1());
+		if (mf->getNumContacts() == 0 || !a || !b || a->engine != this || b->engine != this)
+			continue;
+		const Material *ball = a->kind == kBall && b->kind == kCloth   ? a
+		                       : b->kind == kBall && a->kind == kCloth ? b
+		                                                               : nullptr;
+		if (!ball)
+			continue;
+		Ball &bb = *balls_[size_t(ball->index)];
+		const double vz = bb.body->getLinearVelocity().z();
+		const bool landing = -vz > settings_.impact_speed;
+		for (int j = 0; j < mf->getNumContacts(); ++j) {
+			btManifoldPoint &pt = mf->getContactPoint(j);
+			if (pt.getDistance() > 0.0)
+				continue;
+			touching[size_t(ball->index)] = 1;
+			pt.m_combinedRestitution = landing && -vz > settings_.settle_speed ? params_.e_table : 0.0;
+			if (landing)
+				pt.m_combinedFriction = params_.mu_table;
+		}
+		if (landing && touching[size_t(ball->index)] && !bb.cloth_contact)
+			report(POOL_ENGINE_EVENT_BALL_TABLE, bb.id, -1, t);
+	}
+	for (size_t i = 0; i < balls_.size(); ++i)
+		balls_[i]->cloth_contact = touching[i] != 0;
 }
 
 void Engine::report(int32_t type, int32_t a, int32_t b, double t) {
@@ -552,7 +607,9 @@ void Engine::classify(Ball &ball, bool report_events, double t) {
 	const double R = params_.ball_radius;
 	const btVector3 v = ball.body->getLinearVelocity(), w = ball.body->getAngularVelocity();
 	const int32_t before = ball.state;
-	if (!on_cloth(ball)) {
+	// Airborne mode: above the cloth, or moving vertically (found below the cloth at the end of
+	// the step before its landing is solved, or leaving it): in flight, not at rest.
+	if (!on_cloth(ball) || (airborne_ && std::fabs(v.z()) > settings_.impact_speed)) {
 		ball.state = POOL_MOTION_AIRBORNE;
 		ball.rolling = false;
 		return;

@@ -35,6 +35,8 @@ struct Settings {
 	double rest_spin;          ///< rad/s, |w_z| below which a stopped ball is stationary
 	double release_gap;        ///< m, gap beyond which a touching pair counts as separated
 	double cloth_gap;          ///< m, height above z = R still counted as on the cloth (airborne mode)
+	double impact_speed;       ///< m/s, vertical speed above which a cloth contact is a landing (airborne mode)
+	double settle_speed;       ///< m/s, slowest landing that still bounces (airborne mode; per scenario)
 	int solver_iterations;     ///< sequential-impulse iterations per step
 };
 
@@ -60,6 +62,7 @@ struct Ball {
 	int32_t state = 0;                 ///< pool_motion code
 	bool active = true;                ///< false once pocketed or off the table
 	bool rolling = false;              ///< rolling resistance on (no slip), with hysteresis
+	bool cloth_contact = false;        ///< touched the cloth in the last step (airborne mode: landings)
 	pool_engine_ball last{};           ///< state when it left the table (pocketed / off table)
 };
 
@@ -93,6 +96,7 @@ private:
 	void apply_torques();
 	bool after_step();
 	void update_contacts(double t_detect);
+	void landings();
 	void measure_penetration();
 	void classify(Ball &ball, bool report, double t);
 	bool on_cloth(const Ball &ball) const;

@@ -5,6 +5,7 @@
 #define POOL_PLUGIN_ENGINE_STATE_H
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -24,6 +25,17 @@ inline bool roll_hysteresis(bool rolling, double slip, double on_slip, double of
 	if (rolling)
 		return !(slip > off_slip);
 	return slip < on_slip;
+}
+
+/// Settling rule of airborne mode, the same as the harness's closed form (kSettleFlightTime in
+/// compare/src/reference.h) and libpool's: a rebound that would fly less than this (2 v_z' / g)
+/// settles on the cloth instead.
+constexpr double kSettleFlightTime = 1e-3;
+
+/// The slowest landing (approach speed, m/s) that still bounces under that rule: its rebound
+/// e_table v flies 2 e_table v / g >= kSettleFlightTime. Infinite for e_table = 0 (never bounces).
+inline double settle_landing_speed(const pool_params &p) {
+	return p.e_table > 0.0 ? p.g * kSettleFlightTime / (2.0 * p.e_table) : HUGE_VAL;
 }
 
 /// One event record.

@@ -136,7 +136,8 @@ static int events(void *engine, pool_engine_event *out, int capacity) {
 		case POOL_EVENT_BALL_BALL: type = POOL_ENGINE_EVENT_BALL_BALL; break;
 		case POOL_EVENT_BALL_CUSHION: type = POOL_ENGINE_EVENT_BALL_CUSHION; break;
 		case POOL_EVENT_POCKET: type = POOL_ENGINE_EVENT_POCKET; break;
-		default: continue; // strike, spin_stop, ball_table and LINK events have no counterpart
+		case POOL_EVENT_BALL_TABLE: type = POOL_ENGINE_EVENT_BALL_TABLE; break;
+		default: continue; // strike, spin_stop, off_table and LINK events have no counterpart
 		}
 		if (list[i].time > e->now)
 			break;

@@ -70,10 +70,12 @@ Settings default_settings() {
 	// balls resting against each other or a cushion jitter by far less than that.
 	s.release_gap = 1e-5;
 	// Airborne mode only: a ball within 1 um of the cloth is on it (its contact then holds it
-	// there at zero depth), and a landing slower than 5 cm/s settles instead of bouncing (the
-	// rebound would fly for under 5 ms at e_table 0.5: libpool's settle rule).
+	// there at zero depth), and a landing too slow for its rebound to fly
+	// pool_plugin::kSettleFlightTime (1 ms) settles instead of bouncing: the harness's closed form
+	// and libpool's rule. Set per scenario in build() (it depends on e_table and g; 9.81 mm/s at
+	// the defaults).
 	s.cloth_gap = 1e-6;
-	s.settle_speed = 0.05;
+	s.settle_speed = 0.0;
 	// Contacts approaching faster than 0.1 mm/s are impacts (planar mode solves them without
 	// the cloth, see Engine::step); slower ones are resting contacts and keep the cloth.
 	s.impact_speed = 1e-4;
@@ -102,6 +104,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	settings_ = default_settings();
 	params_ = scenario.def.params;
 	airborne_ = scenario.def.airborne;
+	settings_.settle_speed = pool_plugin::settle_landing_speed(params_);
 	const double R = params_.ball_radius;
 	const double rc = settings_.capsule_radius > 0.0 ? settings_.capsule_radius : R;
 	settings_.capsule_radius = rc;
@@ -289,14 +292,21 @@ void Engine::near(dGeomID g1, dGeomID g2) {
 // The cloth is not a geom: every ball on it gets one contact made here, which also keeps the
 // contact alive at zero depth (ODE's plane collider drops it whenever rounding lifts the ball).
 void Engine::add_cloth_contact(size_t i) {
-	const Ball &b = balls_[i];
+	Ball &b = balls_[i];
 	const double R = params_.ball_radius;
 	const dReal *p = dBodyGetPosition(b.body);
 	const dReal *v = dBodyGetLinearVel(b.body);
 	const dReal *w = dBodyGetAngularVel(b.body);
 	const double gap = p[2] - R;
-	if (airborne_ && gap > settings_.cloth_gap)
+	if (airborne_ && gap > settings_.cloth_gap) {
+		b.cloth_contact = false;
 		return;
+	}
+	// A landing (or a strike pressing the ball into the cloth): a new cloth contact approaching
+	// it, stamped with the time of the state in which it was found (the start of this step).
+	if (airborne_ && !b.cloth_contact && -v[2] > settings_.impact_speed)
+		report(POOL_ENGINE_EVENT_BALL_TABLE, b.id, -1, now());
+	b.cloth_contact = true;
 	dContact c;
 	std::memset(&c, 0, sizeof c);
 	c.geom.pos[0] = p[0];
@@ -331,12 +341,20 @@ void Engine::add_cloth_contact(size_t i) {
 	c.surface.rho2 = c.surface.rho;
 	// Spin friction: torque mu_spin R N about the normal gives dwz/dt = 5 mu_spin g / (2R).
 	c.surface.rhoN = params_.mu_spin > 0.0 ? params_.mu_spin * R : -1.0;
-	if (airborne_ && -v[2] > settings_.settle_speed) {
-		// A landing: the cloth's restitution and impact friction.
-		c.surface.mode |= dContactBounce;
-		c.surface.bounce = params_.e_table;
-		c.surface.bounce_vel = settings_.settle_speed;
+	if (airborne_ && -v[2] > settings_.impact_speed) {
+		// A landing: an impact (Petit's, with mu_table). Rolling resistance and spin friction are
+		// torque limits proportional to the normal impulse, which in a landing step is the
+		// impact's, (1 + e) m v, not m g dt: left on, they took 1.5 % of v_z from the speed of a
+		// rolling ball at every landing (the hop's final position 17 mm off at any dt). libpool's
+		// impact has neither. Landings faster than settle_speed bounce with e_table (ODE drops
+		// the restitution below bounce_vel, so slower ones settle).
+		c.surface.rho = c.surface.rho2 = c.surface.rhoN = -1.0;
 		c.surface.mu = c.surface.mu2 = params_.mu_table;
+		if (-v[2] > settings_.settle_speed) {
+			c.surface.mode |= dContactBounce;
+			c.surface.bounce = params_.e_table;
+			c.surface.bounce_vel = settings_.settle_speed;
+		}
 	}
 	dJointID j = dJointCreateContact(world_, contacts_, &c);
 	dJointAttach(j, b.body, nullptr);
@@ -435,7 +453,9 @@ void Engine::classify(size_t i, bool events) {
 	const dReal *p = dBodyGetPosition(b.body);
 	const dReal *v = dBodyGetLinearVel(b.body);
 	const dReal *w = dBodyGetAngularVel(b.body);
-	if (airborne_ && p[2] - R > settings_.cloth_gap) {
+	// Airborne mode: above the cloth, or moving vertically (a ball found below the cloth at the
+	// end of the step before its landing is solved, or leaving it): in flight, not at rest.
+	if (airborne_ && (p[2] - R > settings_.cloth_gap || std::fabs(v[2]) > settings_.impact_speed)) {
 		b.state = POOL_MOTION_AIRBORNE;
 		b.rolling = false;
 		b.moving = true;
@@ -449,7 +469,8 @@ void Engine::classify(size_t i, bool events) {
 	if (events && b.rolling && !was_rolling && speed > settings_.rest_speed)
 		report(POOL_ENGINE_EVENT_SLIDE_ROLL, b.id, -1, t);
 	const bool moving = !b.rolling || speed > settings_.rest_speed;
-	if (events && b.moving && !moving)
+	// (A ball settling from flight with no horizontal motion never rolled: no roll_stop.)
+	if (events && b.moving && !moving && b.state != POOL_MOTION_AIRBORNE)
 		report(POOL_ENGINE_EVENT_ROLL_STOP, b.id, -1, t);
 	b.moving = moving;
 	if (!b.rolling)

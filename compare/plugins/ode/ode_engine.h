@@ -46,6 +46,7 @@ struct Ball {
 	bool active = true;         ///< false once pocketed or off the table
 	bool rolling = true;        ///< rolling resistance on (no slip), with hysteresis
 	bool moving = false;        ///< translating or sliding (false = at rest or only z-spin)
+	bool cloth_contact = false; ///< had a cloth contact in the last step (airborne: landings)
 };
 
 /// A pool shot simulated by ODE.
