@@ -427,8 +427,8 @@ void Engine::before_solve() {
 	// whole restitution along the tilted normal went into the horizontal velocity) and a
 	// 30-degree cut threw the object ball with 12 % less z-spin. So a ball being hit in this step
 	// (a ball or cushion contact closing faster than rest_speed) is solved without its cloth
-	// contact in planar mode (after_step then drops v_z and puts it back at z = R, as libpool
-	// does), and on a frictionless cloth in airborne mode (where the cloth's support is real).
+	// contact (in planar mode after_step then drops v_z and puts it back at z = R, as libpool
+	// does; in airborne mode the cloth answers in the next step, see below).
 	std::fill(impact_.begin(), impact_.end(), 0);
 	const int count = dispatcher_->getNumManifolds();
 	if (airborne_)
@@ -463,11 +463,20 @@ void Engine::before_solve() {
 		                                                               : nullptr;
 		if (!ball || !impact_[size_t(ball->index)])
 			continue;
-		if (!airborne_)
-			mf->clearManifold();
-		else
-			for (int j = 0; j < mf->getNumContacts(); ++j)
-				mf->getContactPoint(j).m_combinedFriction = 0.0;
+		// Airborne mode, as libpool too: the impact acts alone, and a downward velocity it
+		// leaves (a cushion nose above the centre presses the ball down) is a ball-cloth
+		// collision in the next step, which can make the ball hop; solved with the cloth, the
+		// cloth's support absorbed that press and no ball ever hopped off a rail. The ball keeps
+		// the cloth's support of its weight in that step (a force m g, read by the solver's
+		// setup after this hook): without it every impact on the cloth would start a hop of
+		// e_table g dt. The next step's cloth contact is a new one (a BALL_TABLE event when the
+		// ball moves down).
+		mf->clearManifold();
+		if (airborne_) {
+			Ball &bb = *balls_[size_t(ball->index)];
+			bb.body->applyCentralForce(btVector3(0, 0, params_.ball_mass * params_.g));
+			bb.cloth_contact = false;
+		}
 	}
 }
 

@@ -372,8 +372,24 @@ bool Engine::step() {
 		// the ball-ball friction of spinning balls) and add cloth friction to the impact:
 		// 0.2 m/s less rail-parallel speed off a cushion at 2 m/s, and a cut ball thrown 0.2
 		// degrees off by the friction box of a ball at rest. Resting contacts keep the cloth.
-		if (!balls_[i].active || (!airborne_ && impact_[i]))
+		// Airborne mode, as libpool too: the impact acts alone, and a downward velocity it leaves
+		// (a cushion nose above the centre presses the ball down) is a ball-cloth collision in
+		// the next step, which can make the ball hop. Solved with the cloth, the cloth's support
+		// absorbed that press and no ball ever hopped off a rail. The ball keeps the cloth's
+		// support of its weight in that step (a force m g): without it, every impact of a ball on
+		// the cloth would start a hop of e_table g dt.
+		if (!balls_[i].active)
 			continue;
+		if (impact_[i]) {
+			if (!airborne_)
+				continue;
+			Ball &b = balls_[i];
+			if (dBodyGetPosition(b.body)[2] - params_.ball_radius <= settings_.cloth_gap) {
+				dBodyAddForce(b.body, 0.0, 0.0, params_.ball_mass * params_.g);
+				b.cloth_contact = false;
+				continue;
+			}
+		}
 		add_cloth_contact(i);
 	}
 	int ok = dWorldStep(world_, dt_);
