@@ -32,6 +32,7 @@ expect() {
 # Options.
 "$BIN" --help >"$WORK/help" || fail "--help exited $?"
 grep -q -- "--engines" "$WORK/help" || fail "--help lacks --engines"
+grep -q -- "--airborne" "$WORK/help" || fail "--help lacks --airborne"
 expect 2 "unknown option '--bogus'" --bogus
 expect 2 "^pool-compare: --dt" --dt 1e-3,abc
 expect 2 "^pool-compare: --dt" --dt -1e-3
@@ -290,6 +291,14 @@ if not supported:
 assert "Flight and landing" in report, report
 print("ok: airborne drop scored against its closed form, jump without reference runs and says so")
 PY
+# --airborne runs every compare/scenarios/airborne file after the --scenario ones.
+"$BIN" --engines libpool --plugin-dir "$PLUGINS" --scenario "$SCEN/slide.json" --airborne --out "$WORK/airborne_set" \
+	--no-plots --quiet >/dev/null 2>&1
+"$PY" -c "
+import json, sys
+names = [r['scenario'] for r in json.load(open(sys.argv[1]))]
+assert names == ['slide', 'cushion_hop', 'drop', 'hop', 'jump', 'masse'], names
+" "$WORK/airborne_set/results.json" || fail "--airborne scenario list"
 
 [ "$failures" -eq 0 ] && echo "passed" || echo "FAILED: $failures"
 exit $((failures > 0))
