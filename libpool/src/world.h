@@ -51,6 +51,7 @@ struct pool_sim {
 	pool_stop_reason stop;
 	int predicted; // the queue holds predictions for every body
 	int started;   // an event was recorded: balls can no longer be added
+	int noop_streak; // contacts found to be grazes (no impulse) in a row, not recorded
 };
 
 /// Planar mode (airborne off): every ball stays on the cloth, v_z is dropped after each impulse.
