@@ -28,6 +28,7 @@ using pool_plugin::TableGeometry;
 /// Tuning of the model; every value is explained where it is set (bullet_engine.cpp).
 struct Settings {
 	double capsule_radius;     ///< m, radius of the cushion capsules
+	double airborne_capsule_radius; ///< m, the same in airborne mode (thin: the nose line)
 	double breaking_threshold; ///< m, contact breaking threshold of every manifold
 	double roll_on_slip;       ///< m/s, slip below which rolling resistance switches on
 	double roll_off_slip;      ///< m/s, slip above which it switches off again

@@ -11,7 +11,7 @@ const pool_engine_api kApi = pool_plugin::make_api<pool_bullet::Engine>(
     "Bullet 3.24 double precision, btDiscreteDynamicsWorld, fixed dt, sequential impulse with "
     "split impulse; rolling and spin resistance as applied torques; cannot model: cushion hits "
     "without cloth friction, hops from cushion impulses, exact contact times (found after overlap, "
-    "landings too), line cushions for a flying ball (capsules)");
+    "landings too), line cushions for a flying ball (0.1 mm capsules in airborne mode)");
 
 } // namespace
 

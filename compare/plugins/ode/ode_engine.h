@@ -25,6 +25,7 @@ struct Settings {
 	double erp;              ///< world ERP: fraction of a penetration corrected per step
 	double cfm;              ///< world CFM: constraint compliance (near zero: stiff contacts)
 	double capsule_radius;   ///< m, radius of the cushion capsules
+	double airborne_capsule_radius; ///< m, the same in airborne mode (thin: the nose line)
 	double roll_on_slip;     ///< m/s, slip below which rolling resistance switches on
 	double roll_off_slip;    ///< m/s, slip above which it switches off again
 	double rest_speed;       ///< m/s, speed (and R |w|) below which a ball is at rest
