@@ -25,8 +25,6 @@ int pool_handle_pocket(const pool_event_context *ctx, pool_event_type type, pool
 	(void)ctx;
 	(void)type;
 	(void)count;
-	s[0].vel = pool_v3(0.0, 0.0, 0.0);
-	s[0].omega = pool_v3(0.0, 0.0, 0.0);
-	s[0].motion = POOL_MOTION_POCKETED;
+	pool_take_out_of_play(&s[0], POOL_MOTION_POCKETED);
 	return 0;
 }

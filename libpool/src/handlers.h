@@ -43,6 +43,14 @@ int pool_handle_ball_table(const pool_event_context *ctx, pool_event_type type, 
 /// A ball clears a rail and leaves the table (cloth.c): final, like a pocket.
 int pool_handle_off_table(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count);
 
+/// A ball leaves play (pocketed, off the table): at rest where it left, final.
+static inline void pool_take_out_of_play(pool_ball_state *s, pool_motion motion) {
+	const pool_vec3 zero = {0.0, 0.0, 0.0};
+	s->vel = zero;
+	s->omega = zero;
+	s->motion = motion;
+}
+
 /// The motion state after an impulse or at placement (motion.c). Planar mode drops v_z and
 /// derives the on-cloth state (PHYSICS.md "Collisions"); airborne mode makes the ball airborne
 /// when it is above the cloth or moves vertically faster than POOL_APPROACH_EPS (into the cloth:
