@@ -576,3 +576,12 @@ class Sim:
             _check(lib.pool_sim_state_at(p, t, self._states))
             raw = _copy_balls(addressof(self._states), n)
         return _unpack_balls(raw)
+
+
+def __getattr__(name):
+    # libpool.batch (NumPy) is imported on first use, so `import libpool` needs nothing but the
+    # standard library.
+    if name == "batch":
+        import importlib
+        return importlib.import_module(".batch", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

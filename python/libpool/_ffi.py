@@ -141,8 +141,12 @@ _PROTOTYPES = {
 
 
 def library_path():
-    """Where libpool.so is: $LIBPOOL_PATH, else the repository's build/release tree, else the
-    system's library search (ctypes.util.find_library). None when nothing is found."""
+    """Where libpool.so is: the one bundled in the package (pip install ./python puts it next to
+    this file), else $LIBPOOL_PATH, else the repository's build/release tree, else the system's
+    library search (ctypes.util.find_library). None when nothing is found."""
+    bundled = os.path.join(os.path.dirname(os.path.abspath(__file__)), "libpool.so")
+    if os.path.exists(bundled):
+        return bundled
     env = os.environ.get("LIBPOOL_PATH")
     if env:
         return env
