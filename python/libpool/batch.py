@@ -22,7 +22,7 @@ from ctypes import PyDLL, byref, c_double, c_int, c_int32, c_void_p, string_at
 import numpy as np
 
 from . import PoolError, _ffi
-from ._ffi import BallState as CBallState, Error as CError, Strike
+from ._ffi import BallState as CBallState, Error as CError, SimDef, Strike
 
 __all__ = ["run", "BatchResult", "load_layout", "Layout", "STOP_ERROR", "STOP_NAMES",
            "MOTION_NAMES", "NO_HIT", "STRIKE_FIELDS"]
@@ -247,8 +247,6 @@ def _parse_document(doc):
                 _fail("options.max_time: must be > 0")
         if "max_events" in o:
             d.max_events = _integer(o["max_events"], "options.max_events", 1, 2 ** 31 - 1)
-    if d.airborne:
-        _fail("options.airborne: libpool.batch runs planar layouts only")
     # balls
     if "balls" not in doc:
         _fail("balls: missing")
@@ -298,8 +296,91 @@ def _parse_document(doc):
             rest.append(x)
         strike = (speed, *rest)
     layout = Layout(d, balls, strike_ball, strike)
-    _check_with_sim(layout)
+    if d.airborne:
+        _check_airborne(layout)
+    else:
+        _check_with_sim(layout)
     return layout
+
+
+_TOUCH = 1e-9  # POOL_TOUCH_TOLERANCE
+_MAX_SPEED = 100.0  # POOL_MAX_SPEED
+
+
+def _strike_c(strike):
+    speed, phi, theta, a, b = strike
+    return Strike(speed, phi * _DEG, theta * _DEG, a, b)
+
+
+def _check_airborne(layout):
+    """The scenario parser's check_airborne: 3D positions (z >= R) and vertical velocities; the
+    library's planar rules on each ball's projection on the cloth; 3D overlaps; the struck ball
+    at rest on the cloth."""
+    lib = _ffi.load()
+    planar = SimDef.from_buffer_copy(layout.sim_def)
+    planar.airborne = False
+    err = CError()
+    sim = c_void_p()
+    r = lib.pool_sim_create(byref(planar), byref(sim), byref(err))
+    if r != 0:
+        _fail(_lib_message("options", r, err))
+    try:
+        radius = layout.sim_def.params.ball_radius
+        balls = layout.balls
+        for j, b in enumerate(balls):
+            if b.pos.z < radius - _TOUCH:
+                _fail(f"balls[{j}].pos: below the cloth (z = {b.pos.z:.9g} m, the centre of a "
+                      f"ball on the cloth is at z = R = {radius:.9g} m)")
+            if b.pos.z < radius:
+                b.pos.z = radius
+            v = b.vel
+            if math.sqrt(v.x * v.x + v.y * v.y + v.z * v.z) > _MAX_SPEED:
+                _fail(f"balls[{j}].vel: speed above the {_MAX_SPEED:g} m/s limit (POOL_MAX_SPEED)")
+            for i in range(j):
+                bi = balls[i]
+                if bi.id == b.id:
+                    _fail(f"balls[{j}].id: duplicate id {b.id} (also balls[{i}])")
+                dx, dy, dz = b.pos.x - bi.pos.x, b.pos.y - bi.pos.y, b.pos.z - bi.pos.z
+                depth = 2.0 * radius - math.sqrt(dx * dx + dy * dy + dz * dz)
+                if depth > _TOUCH:
+                    _fail(f"balls[{j}].pos: overlaps ball {bi.id} by {depth:.3g} m")
+            projected = CBallState.from_buffer_copy(b)
+            projected.pos.z = radius
+            projected.vel.z = 0.0
+            err = CError()
+            r = lib.pool_sim_reset(sim, byref(planar), byref(err))
+            if r == 0:
+                r = lib.pool_sim_add_ball(sim, byref(projected), byref(err))
+            if r != 0:
+                message = err.message.decode("utf-8", "replace")
+                if message.startswith("balls[0]"):
+                    _fail(f"balls[{j}]" + message[len("balls[0]"):])
+                _fail(_lib_message(f"balls[{j}]", r, err))
+            b.motion = _derive_motion((b.pos.x, b.pos.y, b.pos.z), tuple(b.vel), tuple(b.omega),
+                                      radius)
+        if layout.strike is not None:
+            b = next(x for x in balls if x.id == layout.strike_ball)
+            if b.pos.z > radius + _TOUCH or b.vel.z != 0.0:
+                _fail(f"strike.ball: ball {layout.strike_ball} must be at rest on the cloth to "
+                      "be struck")
+            projected = CBallState.from_buffer_copy(b)
+            projected.pos.z = radius
+            st = _strike_c(layout.strike)
+            err = CError()
+            r = lib.pool_sim_reset(sim, byref(planar), byref(err))
+            if r == 0:
+                r = lib.pool_sim_add_ball(sim, byref(projected), byref(err))
+            if r == 0:
+                vel, omega, err = _ffi.Vec3(), _ffi.Vec3(), CError()
+                r = lib.pool_strike_velocities(byref(layout.sim_def.params), byref(st),
+                                               byref(vel), byref(omega), byref(err))
+            if r == 0:
+                err = CError()
+                r = lib.pool_sim_strike(sim, layout.strike_ball, byref(st), byref(err))
+            if r != 0:
+                _fail(_lib_message("strike", r, err))
+    finally:
+        lib.pool_sim_destroy(sim)
 
 
 def _check_with_sim(layout):

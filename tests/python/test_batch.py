@@ -150,6 +150,25 @@ class Batch(unittest.TestCase):
         rows = pool_batch(self.post, "--strikes", path, "--ball", "1")
         self.assert_rows_equal(lb.run(self.post, arr, workers=2, ball=1), rows)
 
+    def test_airborne_layout_equals_pool_batch(self):
+        # options.airborne: a ball in flight at the start, jump shots of the cue ball.
+        doc = {"format": "libpool-scenario/1", "options": {"airborne": True, "max_time": 30},
+               "balls": [{"id": 0, "pos": [0.635, 0.635]}, {"id": 1, "pos": [1.2, 0.64]},
+                         {"id": 2, "pos": [1.6, 0.9, 0.08], "vel": [0.3, 0.1, 0.5]}],
+               "strike": {"ball": 0, "speed": 4, "theta": 30}}
+        path = os.path.join(ARGS.work, "airborne.json")
+        with open(path, "w") as f:
+            json.dump(doc, f)
+        rows = pool_batch(path, "--random", "150", "--seed", "2", "--ranges",
+                          "speed=2:7,phi=-10:10,theta=0:60,b=-0.01:0.01")
+        res = lb.run(doc, strikes_of(rows), workers=2)
+        self.assert_rows_equal(res, rows)
+        self.assertIsNone(same_arrays(res, lb.run(path, strikes_of(rows), workers=1)))
+        low = json.loads(json.dumps(doc))
+        low["balls"][2]["pos"][2] = 0.01
+        with self.assertRaisesRegex(ValueError, r"balls\[2\]\.pos: below the cloth"):
+            lb.run(low, [(0, 1, 0, 0, 0, 0)])
+
     def test_layout_forms(self):
         strikes = [(0, 2.0, 12.5, 0.0, 0.0, 0.0), (0, 4.0, 200.0, 3.0, 0.001, 0.002)]
         ref = lb.run(self.post, strikes, workers=1)
