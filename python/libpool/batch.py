@@ -540,7 +540,8 @@ class _Shots:
         self.events = np.zeros(n, dtype=np.int32)
         self.end_time = np.full(n, math.nan)
         self.first_hit = np.full(n, NO_HIT, dtype=np.int64)
-        self.final = np.zeros((n, m), dtype=BALL_DTYPE)
+        self.pos = np.zeros((n, m, 3), dtype=np.float64)
+        self.state = np.zeros((n, m), dtype=np.int8)
         self.error = [""] * n
         self.next = 0
         self.lock = threading.Lock()
@@ -587,7 +588,10 @@ def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
     count = c_int()
     count_p = byref(count)
     strike_base = c_strikes.ctypes.data
-    final_base = shots.final.ctypes.data
+    # Final states of a chunk of shots, copied to the outputs once the chunk is done.
+    final = np.zeros((shots.chunk, m), dtype=BALL_DTYPE)
+    final_base = final.ctypes.data
+    final_pos, final_motion = final["pos"], final["motion"]
     row_size = m * _BALL_SIZE
     ev_stop, ev_events, ev_end, ev_hit, errors = (shots.stop, shots.events, shots.end_time,
                                                   shots.first_hit, shots.error)
@@ -597,7 +601,8 @@ def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
         span = shots.claim()
         if span is None:
             return
-        for i in range(*span):
+        i0, i1 = span
+        for i in range(i0, i1):
             b = balls_list[i]
             if bad_list[i]:
                 ev_stop[i] = STOP_ERROR
@@ -623,7 +628,7 @@ def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
             r = run_(sim)
             t_end = end_time_(sim)
             if r == 0:
-                r = state_at_(sim, c_double(t_end), c_void_p(final_base + row_size * i))
+                r = state_at_(sim, c_double(t_end), c_void_p(final_base + row_size * (i - i0)))
             if r != 0:
                 raise PoolError(r, "shot %d: simulation failed at t = %.17g s" % (i, time_(sim)))
             ev_stop[i] = stop_(sim)
@@ -649,6 +654,8 @@ def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
                                 ev_hit[i] = x
                                 break
                         break
+        shots.pos[i0:i1] = final_pos[:i1 - i0]
+        shots.state[i0:i1] = final_motion[:i1 - i0]
 
 
 def run(layout, strikes, workers=None, ball=None, chunk=64):
@@ -704,10 +711,8 @@ def run(layout, strikes, workers=None, ball=None, chunk=64):
             t.join()
     if shots.failure is not None:
         raise shots.failure
-    final = shots.final
     refused = shots.stop == STOP_ERROR
-    pos = np.ascontiguousarray(final["pos"])
-    state = final["motion"].astype(np.int8)
+    pos, state = shots.pos, shots.state
     pos[refused] = math.nan
     state[refused] = -1
     return BatchResult(
