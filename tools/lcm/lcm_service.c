@@ -5,17 +5,24 @@
 #include <errno.h>
 #include <poll.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "lcm_convert.h"
 
-static volatile sig_atomic_t pool_lcm_stop_flag = 0;
+// Set by the signal handler, read by every thread (pool-shot-server's workers look at it between
+// chunks of a shot): a lock-free atomic, so the handler may write it (C11 7.14.1.1) and the other
+// threads' reads are not a data race (a volatile sig_atomic_t is only safe within one thread).
+static atomic_int pool_lcm_stop_flag = 0;
+_Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the stop flag must be lock-free to be set by a signal");
 
 static void pool_lcm_on_stop_signal(int signal_number)
 {
 	(void)signal_number;
-	pool_lcm_stop_flag = 1;
+	int saved_errno = errno;
+	atomic_store(&pool_lcm_stop_flag, 1);
+	errno = saved_errno;
 }
 
 bool pool_lcm_url_option(int argc, char **argv, int *i, const char **url)
@@ -44,7 +51,7 @@ void pool_lcm_catch_stop_signals(void)
 
 bool pool_lcm_stop_requested(void)
 {
-	return pool_lcm_stop_flag != 0;
+	return atomic_load(&pool_lcm_stop_flag) != 0;
 }
 
 lcm_t *pool_lcm_open(const char *url, char *err, size_t err_size)

@@ -1,15 +1,21 @@
 // pool-shot-server: answers every shot_request_t on POOL_SHOT_REQUEST with a shot_t on POOL_SHOT
-// carrying the same request_id. One simulation is reused for every request (pool_sim_reset via
-// pool_scenario_setup), so a steady stream of shots does not allocate per request; after a shot
-// that grew it past RETAIN_EVENTS events it is freed, so one huge shot does not pin its memory.
+// carrying the same request_id. Each worker thread reuses one simulation for every request it
+// takes (pool_sim_reset via pool_scenario_setup), so a steady stream of shots does not allocate per
+// request; after a shot that grew it past RETAIN_EVENTS events it is freed, so one huge shot does
+// not pin its memory.
 //
-// Two threads. The main one only receives: it takes each request off liblcm's queue as soon as
-// liblcm has it, and either appends it to the server's own queue or, when that queue is full
-// (--max-queue-requests, --max-queue-bytes), answers at once with an error starting "server
-// busy:". So requests wait in a queue bounded in count and bytes, not in liblcm's (whose capacity,
-// LCM_QUEUE_CAPACITY or --max-queue-requests if larger, is a backstop for bursts that arrive faster
-// than the main thread can sort them). The worker thread simulates the queued requests in
-// order and publishes the answers (liblcm functions are thread-safe).
+// 1 + --workers threads (default 1 worker). The main one only receives: it takes each request off
+// liblcm's queue as soon as liblcm has it, and either appends it to the server's own queue or,
+// when that queue is full (--max-queue-requests, --max-queue-bytes), answers at once with an error
+// starting "server busy:". So requests wait in a queue bounded in count and bytes, not in
+// liblcm's (whose capacity, LCM_QUEUE_CAPACITY or --max-queue-requests if larger, is a backstop for
+// bursts that arrive faster than the main thread can sort them). The workers share that one
+// queue: each takes the oldest waiting request, simulates it on its own pool_sim (the library is
+// thread-safe with one pool_sim per thread) and publishes the answer, so with several workers
+// requests are taken up in arrival order but answered in the order they finish. Every publish
+// holds publish_lock: liblcm's udpm provider already holds a lock of its own over each whole
+// message (all its fragments), so this costs nothing there, and it keeps other providers (file://)
+// whose publish is not serialized in every liblcm version safe.
 //
 // Every request has a budget: at most --max-balls balls, at most --max-events events (capping the
 // scenario's own options.max_events) and --max-shot-seconds of wall time counted from the moment
@@ -17,10 +23,10 @@
 // waited is answered with an error without being simulated, and one taken up late gets only what
 // is left. The shot is stepped in chunks of STEP_CHUNK events; between chunks the worker checks
 // the clock and the stop flag, so a request over budget is answered with an error, and SIGINT/
-// SIGTERM abandon a running shot at once (the queued requests are answered with an error too). An
-// answer whose encoding would exceed --max-answer-bytes (LCM over UDP multicast loses messages
-// larger than the receivers' socket buffers) is replaced by one carrying the final states and an
-// error saying so.
+// SIGTERM abandon every running shot at once (the queued requests are answered with an error
+// too). An answer whose encoding would exceed --max-answer-bytes (LCM over UDP multicast loses
+// messages larger than the receivers' socket buffers) is replaced by one carrying the final states
+// and an error saying so.
 //
 // Memory: a request's scenario is freed once it is answered, and once no datagram has come for
 // 200 ms the main thread gives back to the system what malloc kept of freed blocks (glibc
@@ -60,6 +66,9 @@
 #define DEFAULT_MAX_ANSWER_BYTES 4194304L
 #define DEFAULT_MAX_QUEUE_REQUESTS 4096L
 #define DEFAULT_MAX_QUEUE_BYTES 67108864L
+#define DEFAULT_WORKERS 1L
+/// Most accepted --workers.
+#define MAX_WORKERS 256L
 /// Least capacity of liblcm's own queue of requests the main thread has not taken yet (it is
 /// --max-queue-requests when that is larger).
 #define LCM_QUEUE_CAPACITY 1024L
@@ -76,16 +85,19 @@
 static const char usage_text[] =
 	"usage: pool-shot-server [--lcm-url URL] [--max-requests N] [--max-shot-seconds S]\n"
 	"                        [--max-events N] [--max-balls N] [--max-answer-bytes N]\n"
-	"                        [--max-queue-requests N] [--max-queue-bytes N] [--help]\n"
+	"                        [--max-queue-requests N] [--max-queue-bytes N] [--workers N]\n"
+	"                        [--help]\n"
 	"\n"
 	"Answers every pool_lcm.shot_request_t on POOL_SHOT_REQUEST (a libpool-scenario/1 document)\n"
 	"with a pool_lcm.shot_t on POOL_SHOT carrying the same request_id: every event and the final\n"
 	"state of every ball, or `error` naming the offending field of a bad scenario or the limit a\n"
 	"request exceeded. Requests wait their turn in a queue bounded by --max-queue-requests and\n"
 	"--max-queue-bytes; one that does not fit is answered at once with an error starting\n"
-	"\"server busy:\" (send it again later). Undecodable datagrams are logged on standard error and\n"
-	"skipped. Stops on SIGINT or SIGTERM (abandoning a shot in progress and answering the queued\n"
-	"requests with an error) and reports what it answered, refused and dropped.\n"
+	"\"server busy:\" (send it again later). --workers N simulate N requests at once; answers may\n"
+	"then come in another order than the requests (match them by request_id). Undecodable\n"
+	"datagrams are logged on standard error and skipped. Stops on SIGINT or SIGTERM (abandoning the\n"
+	"shots in progress and answering the queued requests with an error) and reports what it\n"
+	"answered, refused and dropped.\n"
 	"\n"
 	"  --lcm-url URL           LCM provider (default $LCM_DEFAULT_URL, else\n"
 	"                          udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608)\n"
@@ -99,9 +111,12 @@ static const char usage_text[] =
 	"  --max-balls N           balls one scenario may hold (default 2000)\n"
 	"  --max-answer-bytes N    largest answer sent; a larger one is replaced by the final states\n"
 	"                          and an error (default 4194304 = 4 MiB)\n"
-	"  --max-queue-requests N  requests that may wait while one is simulated (default 4096)\n"
+	"  --max-queue-requests N  requests that may wait while the workers simulate (default 4096)\n"
 	"  --max-queue-bytes N     encoded bytes of the waiting requests together (default 67108864\n"
 	"                          = 64 MiB); a single larger request is refused with an error\n"
+	"  --workers N             worker threads simulating requests at once, each on its own\n"
+	"                          simulation (default 1: one at a time, answers in arrival order);\n"
+	"                          1..256\n"
 	"  -h, --help              show this help\n";
 
 /// The per-request budget and the queue's bounds (command-line options).
@@ -122,14 +137,16 @@ typedef struct queued_request {
 	double arrived;                  // monotonic s when liblcm received it
 } queued_request;
 
-/// What both threads share. `lock` guards the queue and every counter written by both threads
-/// (answered, errors, publish_failures, last_shot_id); the counters only the worker writes
-/// (over_budget ... abandoned_queued) are read by the main thread after joining it.
+/// What all threads share. `lock` guards the queue and the counters written by the main thread
+/// and the workers (answered, errors, publish_failures, last_shot_id); the counters the workers
+/// write (over_budget ... abandoned_queued) are atomic, read by the main thread after joining
+/// them; those only the main thread writes (undecodable, busy, too_large) are plain.
 typedef struct server_state {
 	lcm_t *lcm;
 	server_limits limits;
 	long max_requests;    // --max-requests
 	pthread_mutex_t lock;
+	pthread_mutex_t publish_lock; // held over every lcm publish (see the top of this file)
 	pthread_cond_t wake;  // signalled when a request is queued or the server stops
 	queued_request *head; // oldest
 	queued_request *tail;
@@ -137,9 +154,8 @@ typedef struct server_state {
 	long queued_bytes;
 	long peak_queued;     // largest queue seen, requests and bytes
 	long peak_queued_bytes;
-	atomic_bool stopping; // the main loop ended: the worker abandons what it has and returns
-	int wake_pipe[2];     // the worker writes a byte when --max-requests answers are reached
-	pool_sim *sim;        // reused for every request (worker only)
+	atomic_bool stopping; // the main loop ended: the workers abandon what they have and return
+	int wake_pipe[2];     // a worker writes a byte when --max-requests answers are reached
 	int64_t last_shot_id; // shot ids strictly increase even within one microsecond
 	long answered;        // shot_t published (errors included)
 	long errors;          // answers carrying an error (all the refusals below included)
@@ -147,14 +163,22 @@ typedef struct server_state {
 	long undecodable;     // datagrams that were not a shot_request_t (main thread only)
 	long busy;            // refused with "server busy:" because the queue was full (main only)
 	long too_large;       // requests alone larger than --max-queue-bytes (main only)
-	long over_budget;     // requests over --max-shot-seconds (while running), --max-events or
-	                      // --max-balls (worker only; the report adds too_large)
+	atomic_long over_budget; // requests over --max-shot-seconds (while running), --max-events or
+	                         // --max-balls (workers; the report adds too_large)
 	atomic_long trim_bytes; // request bytes received or freed since the last malloc_trim
-	long expired;         // budget spent in the queue: answered with an error, not simulated
-	long oversized;       // answers over --max-answer-bytes, replaced by the final states
-	long abandoned;       // running shots given up because a stop signal arrived
-	long abandoned_queued; // queued requests answered with an error because the server stopped
+	atomic_long expired;    // budget spent in the queue: answered with an error, not simulated
+	atomic_long oversized;  // answers over --max-answer-bytes, replaced by the final states
+	atomic_long abandoned;  // running shots given up because a stop signal arrived
+	atomic_long abandoned_queued; // queued requests answered with an error because the server
+	                              // stopped
 } server_state;
+
+/// One worker thread and the simulation it reuses for every request it takes.
+typedef struct worker {
+	server_state *s;
+	pool_sim *sim;
+	pthread_t thread;
+} worker;
 
 static double monotonic_s(void)
 {
@@ -180,7 +204,9 @@ static bool stop_now(server_state *s)
 
 static void publish_shot(server_state *s, const pool_lcm_shot_t *shot, bool is_error)
 {
+	pthread_mutex_lock(&s->publish_lock);
 	bool failed = pool_lcm_shot_t_publish(s->lcm, POOL_LCM_CHANNEL_SHOT, shot) != 0;
+	pthread_mutex_unlock(&s->publish_lock);
 	if (failed) {
 		fprintf(stderr, "pool-shot-server: could not publish the answer to request %lld\n",
 		        (long long)shot->request_id);
@@ -223,15 +249,16 @@ typedef enum run_outcome {
 
 // Steps the shot in chunks of STEP_CHUNK events, looking at the stop flag and the clock between
 // chunks. deadline: monotonic time the answer is due (arrival + --max-shot-seconds).
-static run_outcome run_budgeted(server_state *s, double deadline, double queued_s, char *err,
+static run_outcome run_budgeted(worker *w, double deadline, double queued_s, char *err,
                                 size_t err_size)
 {
+	server_state *s = w->s;
 	for (;;) {
 		for (int k = 0; k < STEP_CHUNK; ++k) {
-			int status = pool_sim_step(s->sim);
+			int status = pool_sim_step(w->sim);
 			if (status < 0) {
 				snprintf(err, err_size, "simulation failed at t = %.17g s: %s",
-				         pool_sim_time(s->sim), pool_result_str((pool_result)status));
+				         pool_sim_time(w->sim), pool_result_str((pool_result)status));
 				return RUN_FAILED;
 			}
 			if (status == 0) {
@@ -243,12 +270,12 @@ static run_outcome run_budgeted(server_state *s, double deadline, double queued_
 		}
 		if (monotonic_s() > deadline) {
 			int count = 0;
-			pool_sim_events(s->sim, &count);
+			pool_sim_events(w->sim, &count);
 			snprintf(err, err_size,
 			         "shot exceeded the server's budget of %g s (--max-shot-seconds): stopped "
 			         "after %d events at t = %.6g s (the budget counts from the request's "
 			         "arrival; %.3f s of it spent queued)",
-			         s->limits.max_shot_seconds, count, pool_sim_time(s->sim), queued_s);
+			         s->limits.max_shot_seconds, count, pool_sim_time(w->sim), queued_s);
 			return RUN_OVER_TIME;
 		}
 	}
@@ -256,19 +283,20 @@ static run_outcome run_budgeted(server_state *s, double deadline, double queued_
 
 // Publishes the shot, or, when its encoding would exceed --max-answer-bytes, an answer carrying
 // the final states (when they fit) and an error giving the size.
-static void answer_shot(server_state *s, int64_t shot_id, int64_t request_id)
+static void answer_shot(worker *w, int64_t shot_id, int64_t request_id)
 {
+	server_state *s = w->s;
 	pool_lcm_shot_t shot;
-	int64_t events_size = pool_lcm_shot_events_encoded_size(s->sim);
+	int64_t events_size = pool_lcm_shot_events_encoded_size(w->sim);
 	if (events_size < 0 ||
-	    pool_lcm_shot_fill_final(s->sim, shot_id, request_id, pool_lcm_utime_now(), &shot) != 0) {
+	    pool_lcm_shot_fill_final(w->sim, shot_id, request_id, pool_lcm_utime_now(), &shot) != 0) {
 		answer_error(s, shot_id, request_id, "out of memory converting the shot");
 		return;
 	}
 	int64_t size = (int64_t)pool_lcm_shot_t_encoded_size(&shot) + events_size;
 	if (size <= s->limits.max_answer_bytes) {
 		pool_lcm_shot_release(&shot);
-		if (pool_lcm_shot_fill(s->sim, shot_id, request_id, shot.utime, &shot) != 0) {
+		if (pool_lcm_shot_fill(w->sim, shot_id, request_id, shot.utime, &shot) != 0) {
 			answer_error(s, shot_id, request_id, "out of memory converting the shot");
 			return;
 		}
@@ -277,7 +305,7 @@ static void answer_shot(server_state *s, int64_t shot_id, int64_t request_id)
 		return;
 	}
 	int count = 0;
-	pool_sim_events(s->sim, &count);
+	pool_sim_events(w->sim, &count);
 	char message[400];
 	snprintf(message, sizeof message,
 	         "the answer of %" PRId64 " bytes (%d events) exceeds the server's limit of %ld bytes "
@@ -295,26 +323,26 @@ static void answer_shot(server_state *s, int64_t shot_id, int64_t request_id)
 		         "bytes (--max-answer-bytes); the %d final states do not fit either",
 		         size, count, s->limits.max_answer_bytes, shot.num_balls);
 		pool_lcm_shot_release(&shot);
-		s->oversized++;
+		atomic_fetch_add(&s->oversized, 1);
 		answer_error(s, shot_id, request_id, message);
 		return;
 	}
 	fprintf(stderr, "pool-shot-server: request %lld: %s\n", (long long)request_id, message);
-	s->oversized++;
+	atomic_fetch_add(&s->oversized, 1);
 	publish_shot(s, &shot, true);
 	pool_lcm_shot_release(&shot);
 }
 
 // Frees the simulation after a shot that made it large, so its memory goes back to the system.
-static void trim_sim(server_state *s)
+static void trim_sim(worker *w)
 {
 	int count = 0;
-	if (s->sim != NULL) {
-		pool_sim_events(s->sim, &count);
+	if (w->sim != NULL) {
+		pool_sim_events(w->sim, &count);
 	}
 	if (count > RETAIN_EVENTS) {
-		pool_sim_destroy(s->sim);
-		s->sim = NULL;
+		pool_sim_destroy(w->sim);
+		w->sim = NULL;
 	}
 }
 
@@ -327,12 +355,13 @@ static void answer_expired(server_state *s, int64_t shot_id, const queued_reques
 	         "request expired in the server's queue: it waited %.3f s, and the server's budget of "
 	         "%g s (--max-shot-seconds), counted from its arrival, ran out %s; not simulated",
 	         now - q->arrived, s->limits.max_shot_seconds, when);
-	s->expired++;
+	atomic_fetch_add(&s->expired, 1);
 	answer_error(s, shot_id, q->request.request_id, err);
 }
 
-static void answer_request(server_state *s, const queued_request *q)
+static void answer_request(worker *w, const queued_request *q)
 {
+	server_state *s = w->s;
 	double started = monotonic_s();
 	double deadline = q->arrived + s->limits.max_shot_seconds;
 	double queued_s = started - q->arrived;
@@ -353,7 +382,7 @@ static void answer_request(server_state *s, const queued_request *q)
 		snprintf(err, sizeof err, "balls: %d balls, more than the server's limit of %ld "
 		         "(--max-balls)", scenario.ball_count, s->limits.max_balls);
 		pool_scenario_free(&scenario);
-		s->over_budget++;
+		atomic_fetch_add(&s->over_budget, 1);
 		answer_error(s, shot_id, request_id, err);
 		return;
 	}
@@ -363,39 +392,39 @@ static void answer_request(server_state *s, const queued_request *q)
 		scenario.def.max_events = (int)s->limits.max_events;
 	}
 	pool_error perr = {{0}};
-	pool_result r = pool_scenario_setup(&scenario, &s->sim, &perr);
+	pool_result r = pool_scenario_setup(&scenario, &w->sim, &perr);
 	pool_scenario_free(&scenario);
 	if (r != POOL_OK) {
 		answer_error(s, shot_id, request_id, perr.message[0] ? perr.message : pool_result_str(r));
 		return;
 	}
-	run_outcome outcome = run_budgeted(s, deadline, queued_s, err, sizeof err);
-	if (outcome == RUN_DONE && capped && pool_sim_stop_reason(s->sim) == POOL_STOP_MAX_EVENTS) {
+	run_outcome outcome = run_budgeted(w, deadline, queued_s, err, sizeof err);
+	if (outcome == RUN_DONE && capped && pool_sim_stop_reason(w->sim) == POOL_STOP_MAX_EVENTS) {
 		snprintf(err, sizeof err,
 		         "shot exceeded the server's budget of %ld events (--max-events) at t = %.6g s",
-		         s->limits.max_events, pool_sim_time(s->sim));
+		         s->limits.max_events, pool_sim_time(w->sim));
 		outcome = RUN_OVER_TIME; // over budget, like the time limit
 	}
 	switch (outcome) {
 	case RUN_DONE:
-		answer_shot(s, shot_id, request_id);
+		answer_shot(w, shot_id, request_id);
 		break;
 	case RUN_FAILED:
 		answer_error(s, shot_id, request_id, err);
 		break;
 	case RUN_OVER_TIME:
 		fprintf(stderr, "pool-shot-server: request %lld: %s\n", (long long)request_id, err);
-		s->over_budget++;
+		atomic_fetch_add(&s->over_budget, 1);
 		answer_error(s, shot_id, request_id, err);
 		break;
 	case RUN_STOPPED:
-		s->abandoned++;
+		atomic_fetch_add(&s->abandoned, 1);
 		answer_error(s, shot_id, request_id, pool_lcm_stop_requested()
 		             ? "shot abandoned: the server is stopping (SIGINT/SIGTERM)"
 		             : "shot abandoned: the server is stopping (--max-requests answered)");
 		break;
 	}
-	trim_sim(s);
+	trim_sim(w);
 }
 
 static void free_queued(queued_request *q)
@@ -404,11 +433,12 @@ static void free_queued(queued_request *q)
 	free(q);
 }
 
-// The worker thread: answers the queued requests in arrival order until the server stops, then
-// answers what is still queued with an error.
+// A worker thread: takes the oldest queued request and answers it, until the server stops; then
+// answers what is still queued with an error (the workers share that, each taking the oldest).
 static void *worker_main(void *user)
 {
-	server_state *s = user;
+	worker *w = user;
+	server_state *s = w->s;
 	for (;;) {
 		pthread_mutex_lock(&s->lock);
 		while (s->head == NULL && !stop_now(s)) {
@@ -436,14 +466,14 @@ static void *worker_main(void *user)
 			return NULL; // stopping, nothing left
 		}
 		if (stop_now(s)) {
-			s->abandoned_queued++;
+			atomic_fetch_add(&s->abandoned_queued, 1);
 			answer_error(s, next_shot_id(s), q->request.request_id, pool_lcm_stop_requested()
 			             ? "request abandoned before its turn: the server is stopping "
 			               "(SIGINT/SIGTERM)"
 			             : "request abandoned before its turn: the server is stopping "
 			               "(--max-requests answered)");
 		} else {
-			answer_request(s, q);
+			answer_request(w, q);
 		}
 		atomic_fetch_add(&s->trim_bytes, q->bytes);
 		free_queued(q);
@@ -562,6 +592,7 @@ int main(int argc, char **argv)
 {
 	const char *url = NULL;
 	long max_requests = 0;
+	long workers = DEFAULT_WORKERS;
 	server_limits limits = {DEFAULT_MAX_SHOT_SECONDS, DEFAULT_MAX_EVENTS, DEFAULT_MAX_BALLS,
 	                        DEFAULT_MAX_ANSWER_BYTES, DEFAULT_MAX_QUEUE_REQUESTS,
 	                        DEFAULT_MAX_QUEUE_BYTES};
@@ -609,6 +640,13 @@ int main(int argc, char **argv)
 				                "1..%d\n", argv[i], INT_MAX);
 				return EXIT_BAD_INPUT;
 			}
+		} else if (strcmp(a, "--workers") == 0 && i + 1 < argc) {
+			if (!pool_cli_parse_count(argv[++i], &workers) || workers < 1 ||
+			    workers > MAX_WORKERS) {
+				fprintf(stderr, "pool-shot-server: --workers: '%s' is not a count in 1..%ld\n",
+				        argv[i], MAX_WORKERS);
+				return EXIT_BAD_INPUT;
+			}
 		} else if (strcmp(a, "--max-queue-bytes") == 0 && i + 1 < argc) {
 			if (!parse_size_option(argv[++i], 1, &limits.max_queue_bytes)) {
 				fprintf(stderr, "pool-shot-server: --max-queue-bytes: '%s' is not a size in "
@@ -630,11 +668,17 @@ int main(int argc, char **argv)
 	s.max_requests = max_requests;
 	atomic_init(&s.stopping, false);
 	atomic_init(&s.trim_bytes, 0);
+	atomic_init(&s.over_budget, 0);
+	atomic_init(&s.expired, 0);
+	atomic_init(&s.oversized, 0);
+	atomic_init(&s.abandoned, 0);
+	atomic_init(&s.abandoned_queued, 0);
 	if (pipe(s.wake_pipe) != 0) {
 		perror("pool-shot-server: pipe");
 		return EXIT_INTERNAL;
 	}
 	pthread_mutex_init(&s.lock, NULL);
+	pthread_mutex_init(&s.publish_lock, NULL);
 	pthread_cond_init(&s.wake, NULL);
 	char err[256];
 	s.lcm = pool_lcm_open(url, err, sizeof err);
@@ -655,29 +699,43 @@ int main(int argc, char **argv)
 	long lcm_capacity = limits.max_queue_requests > LCM_QUEUE_CAPACITY ? limits.max_queue_requests
 	                                                                   : LCM_QUEUE_CAPACITY;
 	lcm_subscription_set_queue_capacity(sub, (int)lcm_capacity);
-	// The worker blocks SIGINT and SIGTERM, so they reach the main thread and cut its poll short.
+	worker *pool = calloc((size_t)workers, sizeof *pool);
+	if (pool == NULL) {
+		fprintf(stderr, "pool-shot-server: out of memory\n");
+		lcm_unsubscribe(s.lcm, sub);
+		lcm_destroy(s.lcm);
+		return EXIT_INTERNAL;
+	}
+	// The workers block SIGINT and SIGTERM, so they reach the main thread and cut its poll short.
 	sigset_t stop_signals, old_mask;
 	sigemptyset(&stop_signals);
 	sigaddset(&stop_signals, SIGINT);
 	sigaddset(&stop_signals, SIGTERM);
 	pthread_sigmask(SIG_BLOCK, &stop_signals, &old_mask);
-	pthread_t worker;
-	int created = pthread_create(&worker, NULL, worker_main, &s);
-	pthread_sigmask(SIG_SETMASK, &old_mask, NULL);
-	if (created != 0) {
-		fprintf(stderr, "pool-shot-server: cannot start the worker thread\n");
-		lcm_unsubscribe(s.lcm, sub);
-		lcm_destroy(s.lcm);
-		return EXIT_INTERNAL;
+	long started = 0;
+	for (; started < workers; ++started) {
+		pool[started].s = &s;
+		if (pthread_create(&pool[started].thread, NULL, worker_main, &pool[started]) != 0) {
+			break;
+		}
 	}
-	fprintf(stderr, "pool-shot-server: ready on %s, channel %s (budget per request: %g s from "
-	        "arrival, %ld events, %ld balls, %ld-byte answers; queue: %ld requests, %ld bytes)\n",
-	        pool_lcm_resolve_url(url), POOL_LCM_CHANNEL_SHOT_REQUEST, limits.max_shot_seconds,
-	        limits.max_events, limits.max_balls, limits.max_answer_bytes,
-	        limits.max_queue_requests, limits.max_queue_bytes);
-
+	pthread_sigmask(SIG_SETMASK, &old_mask, NULL);
 	int status = 0;
-	for (;;) {
+	if (started < workers) {
+		fprintf(stderr, "pool-shot-server: cannot start worker thread %ld of %ld\n", started + 1,
+		        workers);
+		status = EXIT_INTERNAL;
+	} else {
+		fprintf(stderr, "pool-shot-server: ready on %s, channel %s (budget per request: %g s "
+		        "from arrival, %ld events, %ld balls, %ld-byte answers; queue: %ld requests, %ld "
+		        "bytes; %ld worker%s)\n",
+		        pool_lcm_resolve_url(url), POOL_LCM_CHANNEL_SHOT_REQUEST,
+		        limits.max_shot_seconds, limits.max_events, limits.max_balls,
+		        limits.max_answer_bytes, limits.max_queue_requests, limits.max_queue_bytes,
+		        workers, workers == 1 ? "" : "s");
+	}
+
+	while (status == 0) {
 		pthread_mutex_lock(&s.lock);
 		bool done = max_requests > 0 && s.answered >= max_requests;
 		pthread_mutex_unlock(&s.lock);
@@ -707,7 +765,9 @@ int main(int argc, char **argv)
 	atomic_store(&s.stopping, true);
 	pthread_cond_broadcast(&s.wake);
 	pthread_mutex_unlock(&s.lock);
-	pthread_join(worker, NULL);
+	for (long k = 0; k < started; ++k) {
+		pthread_join(pool[k].thread, NULL);
+	}
 
 	fprintf(stderr,
 	        "pool-shot-server: answered %ld requests (%ld with an error), skipped %ld undecodable "
@@ -715,14 +775,18 @@ int main(int argc, char **argv)
 	        "--max-answer-bytes, %ld shots abandoned on stop; %ld refused as busy (queue full), "
 	        "%ld expired in the queue, %ld queued requests abandoned on stop; queue peak %ld "
 	        "requests, %ld bytes\n",
-	        s.answered, s.errors, s.undecodable, s.publish_failures, s.over_budget + s.too_large,
-	        s.oversized,
-	        s.abandoned, s.busy, s.expired, s.abandoned_queued, s.peak_queued,
-	        s.peak_queued_bytes);
+	        s.answered, s.errors, s.undecodable, s.publish_failures,
+	        atomic_load(&s.over_budget) + s.too_large, atomic_load(&s.oversized),
+	        atomic_load(&s.abandoned), s.busy, atomic_load(&s.expired),
+	        atomic_load(&s.abandoned_queued), s.peak_queued, s.peak_queued_bytes);
 	lcm_unsubscribe(s.lcm, sub);
 	lcm_destroy(s.lcm);
-	pool_sim_destroy(s.sim);
+	for (long k = 0; k < workers; ++k) {
+		pool_sim_destroy(pool[k].sim);
+	}
+	free(pool);
 	pthread_cond_destroy(&s.wake);
+	pthread_mutex_destroy(&s.publish_lock);
 	pthread_mutex_destroy(&s.lock);
 	close(s.wake_pipe[0]);
 	close(s.wake_pipe[1]);
