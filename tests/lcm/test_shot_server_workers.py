@@ -5,9 +5,10 @@ short one sent right after them: both long ones run at once (the endless one is 
 budget, not expired in the queue), and the short one is answered right after the first long one,
 before the endless one ends (with the default single worker, the same three requests answer the
 short one only after both); answers are matched by request_id and come in completion order;
-SIGTERM abandons every running shot and answers the queued requests; a burst of 120 requests of
-four kinds on 3 workers, every answer equal to pool-sim's; the exit report's counts match the
-answers; bad --workers values exit 2 naming the option. Every wait is bounded; the long requests
+the queue bound (--max-queue-requests) is shared by the workers; SIGTERM abandons every running
+shot and answers the queued requests; a burst of 120 requests of four kinds on 3 workers, every
+answer equal to pool-sim's; the exit report's counts match the answers; bad --workers values exit
+2 naming the option. Every wait is bounded; the long requests
 are calibrated on this machine (and build), so the test also runs under a sanitizer."""
 import json
 import os
@@ -245,34 +246,40 @@ if 3 in took and 3 in took_2:
     print("short request behind a long and an endless one: answered after %.2f s with 2 workers, "
           "%.2f s with 1" % (took_2[3], took[3]), flush=True)
 
-# 2. SIGTERM with two shots running and three requests queued behind them: both running shots
-# are abandoned, the queued requests answered with an error, within a fraction of a second.
+# 2. The queue bound is the server's, shared by the workers, and counts waiting requests only:
+# with --workers 2 --max-queue-requests 2, two endless shots running and five short requests sent
+# behind them, two wait and three are answered "server busy" at once. Then SIGTERM: both running
+# shots are abandoned and the two queued requests answered with an error, within a fraction of a
+# second.
 got.clear()
-server = start("--workers", "2")
+server = start("--workers", "2", "--max-queue-requests", "2")
 request(10, endless)
 request(11, endless)
 time.sleep(0.5)  # both endless shots are under way, one per worker
-for rid in (12, 13, 14):
+for rid in (12, 13, 14, 15, 16):
     request(rid, scenarios["short"])
-early = collect([12, 13, 14], 0.3)
-u.check(early == [12, 13, 14], "SIGTERM: queued requests answered while both workers were busy: "
-        "%r" % sorted(set([12, 13, 14]) - set(early)))
+collect([12, 13, 14, 15, 16], 1.0)
+busy = sorted(rid for rid in got if got[rid][0].error.startswith("server busy:"))
+u.check(busy == [14, 15, 16] and all("2 requests" in got[rid][0].error for rid in busy),
+        "shared queue: busy answers %r, answered %r" % (busy, sorted(got)))
+u.check(12 not in got and 13 not in got,
+        "shared queue: queued requests answered while both workers were busy")
 t0 = time.monotonic()
 counts = stop(server, "SIGTERM")
 stopped_s = time.monotonic() - t0
-missing = collect([10, 11, 12, 13, 14], 2)
+missing = collect([10, 11, 12, 13], 2)
 u.check(not missing, "SIGTERM: %r unanswered" % missing)
 for rid in (10, 11):
     if rid in got:
         u.check(got[rid][0].error == "shot abandoned: the server is stopping (SIGINT/SIGTERM)",
                 "SIGTERM: running shot %d error %r" % (rid, got[rid][0].error))
-for rid in (12, 13, 14):
+for rid in (12, 13):
     if rid in got:
         u.check("abandoned before its turn" in got[rid][0].error,
                 "SIGTERM: queued request %d error %r" % (rid, got[rid][0].error))
-print("SIGTERM with 2 shots running and 3 queued: exited after %.2f s" % stopped_s, flush=True)
-expect_counts(counts, "SIGTERM", answered=5, errors=5, abandoned=2, abandoned_queued=3,
-              over_budget=0, expired=0, busy=0, peak_requests=3)
+print("SIGTERM with 2 shots running and 2 queued: exited after %.3f s" % stopped_s, flush=True)
+expect_counts(counts, "SIGTERM", answered=7, errors=7, abandoned=2, abandoned_queued=2,
+              busy=3, over_budget=0, expired=0, peak_requests=2)
 
 # 3. A burst of 120 requests of four kinds on 3 workers, sent as fast as this client can: every
 # answer equal to pool-sim's, shot ids unique; --max-requests 120 stops the server by itself, with
