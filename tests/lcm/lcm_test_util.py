@@ -18,6 +18,41 @@ URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
 ball_json = event_json = shot_json = None
 
 
+def ball_grid(n, frictionless=True, max_events=2 ** 31 - 1):
+    """A libpool-scenario/1 text: n small balls (R = 5 mm) on a grid, every one moving. Frictionless
+    (the default), with perfectly elastic impacts, tiny pockets and no time limit of its own, the
+    shot practically never ends: it stops at its own max_events (by default none that matters) or
+    at the server's budget. With friction: an ordinary shot of n balls (the --max-balls test)."""
+    r, balls, i, y = 0.005, [], 0, 0.05
+    while i < n:
+        x = 0.05
+        while x < 2.49 and i < n:
+            balls.append({"id": i, "pos": [round(x, 6), round(y, 6)],
+                          "vel": [0.3 if i % 2 else -0.2, 0.25 if i % 3 else -0.1, 0.0]})
+            i, x = i + 1, x + 2.5 * r
+        y += 2.5 * r
+    doc = {"format": "libpool-scenario/1",
+           "table": {"preset": "wpa-9ft", "cushion_height": 0.0065},
+           "params": {"ball_radius": r}, "balls": balls}
+    if frictionless:
+        doc["table"].update({"corner_mouth": 0.0101, "side_mouth": 0.0101})
+        doc["params"].update({"mu_slide": 0.0, "mu_roll": 0.0, "mu_spin": 0.0, "e_ball": 1.0,
+                              "e_cushion": 1.0})
+        doc["options"] = {"max_time": 1e9, "max_events": max_events}
+    return json.dumps(doc)
+
+
+def publish_request(client, request_id, text):
+    """Publishes a shot_request_t for the scenario text on POOL_SHOT_REQUEST (after parse_args,
+    which puts the generated types on the path)."""
+    from pool_lcm import shot_request_t
+    msg = shot_request_t()
+    msg.utime = int(time.time() * 1e6)
+    msg.request_id = request_id
+    msg.scenario_json = text
+    client.publish("POOL_SHOT_REQUEST", msg.encode())
+
+
 def parse_args(extra=()):
     """Paths every test needs: the build's tools, the generated Python types, the data."""
     p = argparse.ArgumentParser()

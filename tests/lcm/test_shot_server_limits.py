@@ -15,7 +15,7 @@ import lcm_test_util as u
 
 args = u.parse_args()
 import lcm  # noqa: E402
-from pool_lcm import shot_request_t, shot_t  # noqa: E402
+from pool_lcm import shot_t  # noqa: E402
 
 SERVER = os.path.join(args.bin_dir, "pool-shot-server")
 data = {n: open(os.path.join(args.data_dir, n + ".json")).read() for n in ("short", "break")}
@@ -23,40 +23,14 @@ want = {n: u.pool_sim_json(args.bin_dir, os.path.join(args.data_dir, n + ".json"
         for n in ("short", "break")}
 
 
-def grid(n, frictionless):
-    """n small balls (R = 5 mm) on a grid, every one moving. Frictionless with perfectly elastic
-    impacts, tiny pockets and no time or event limit of its own, the shot practically never ends:
-    only the server's budget stops it."""
-    r, balls, i, y = 0.005, [], 0, 0.05
-    while i < n:
-        x = 0.05
-        while x < 2.49 and i < n:
-            balls.append({"id": i, "pos": [round(x, 6), round(y, 6)],
-                          "vel": [0.3 if i % 2 else -0.2, 0.25 if i % 3 else -0.1, 0.0]})
-            i, x = i + 1, x + 2.5 * r
-        y += 2.5 * r
-    doc = {"format": "libpool-scenario/1",
-           "table": {"preset": "wpa-9ft", "cushion_height": 0.0065},
-           "params": {"ball_radius": r}, "balls": balls}
-    if frictionless:
-        doc["table"].update({"corner_mouth": 0.0101, "side_mouth": 0.0101})
-        doc["params"].update({"mu_slide": 0.0, "mu_roll": 0.0, "mu_spin": 0.0, "e_ball": 1.0,
-                              "e_cushion": 1.0})
-        doc["options"] = {"max_time": 1e9, "max_events": 2 ** 31 - 1}
-    return json.dumps(doc)
-
-
+grid = u.ball_grid  # n moving balls; frictionless: never ends by itself
 endless = grid(1000, True)
 answers = u.Collector(u.URL, ["POOL_SHOT"])
 client = lcm.LCM(u.URL)
 
 
 def request(request_id, text):
-    msg = shot_request_t()
-    msg.utime = int(time.time() * 1e6)
-    msg.request_id = request_id
-    msg.scenario_json = text
-    client.publish("POOL_SHOT_REQUEST", msg.encode())
+    u.publish_request(client, request_id, text)
 
 
 def wait_answer(request_id, timeout):

@@ -7,7 +7,6 @@ request queued behind endless ones is answered within its budget (with an error 
 in the queue) instead of after all of them, and one taken up late runs on what is left of its
 budget; SIGTERM answers the queued requests with an error. Every wait is bounded; the whole test
 takes about 20 s."""
-import json
 import os
 import re
 import signal
@@ -19,7 +18,7 @@ import lcm_test_util as u
 args = u.parse_args(extra=[("--server", {"default": None,
                                          "help": "pool-shot-server to test (default: the build's)"})])
 import lcm  # noqa: E402
-from pool_lcm import shot_request_t, shot_t  # noqa: E402
+from pool_lcm import shot_t  # noqa: E402
 
 SERVER = args.server or os.path.join(args.bin_dir, "pool-shot-server")
 short = open(os.path.join(args.data_dir, "short.json")).read()
@@ -29,29 +28,7 @@ MB = 1 << 20
 SLACK = 1.0  # s allowed past a budget on a loaded 2-core machine
 
 
-def grid(n):
-    """n small frictionless balls, all moving, perfectly elastic, tiny pockets, no limits of its
-    own: the shot practically never ends, only the server's budget stops it (as in
-    test_shot_server_limits.py)."""
-    r, balls, i, y = 0.005, [], 0, 0.05
-    while i < n:
-        x = 0.05
-        while x < 2.49 and i < n:
-            balls.append({"id": i, "pos": [round(x, 6), round(y, 6)],
-                          "vel": [0.3 if i % 2 else -0.2, 0.25 if i % 3 else -0.1, 0.0]})
-            i, x = i + 1, x + 2.5 * r
-        y += 2.5 * r
-    return json.dumps({
-        "format": "libpool-scenario/1",
-        "table": {"preset": "wpa-9ft", "cushion_height": 0.0065, "corner_mouth": 0.0101,
-                  "side_mouth": 0.0101},
-        "params": {"ball_radius": r, "mu_slide": 0.0, "mu_roll": 0.0, "mu_spin": 0.0,
-                   "e_ball": 1.0, "e_cushion": 1.0},
-        "options": {"max_time": 1e9, "max_events": 2 ** 31 - 1},
-        "balls": balls})
-
-
-endless = grid(1000)
+endless = u.ball_grid(1000)
 # The short shot padded with JSON whitespace to 4 MiB: a valid scenario, quick to simulate.
 big = short + " " * (4 * MB - len(short))
 
@@ -60,11 +37,7 @@ client = lcm.LCM(u.URL)
 
 
 def request(request_id, text):
-    msg = shot_request_t()
-    msg.utime = int(time.time() * 1e6)
-    msg.request_id = request_id
-    msg.scenario_json = text
-    client.publish("POOL_SHOT_REQUEST", msg.encode())
+    u.publish_request(client, request_id, text)
 
 
 got = {}  # request_id -> (shot_t, monotonic arrival time of the answer)

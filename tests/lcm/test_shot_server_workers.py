@@ -10,7 +10,6 @@ shot and answers the queued requests; a burst of 120 requests of four kinds on 3
 answer equal to pool-sim's; the exit report's counts match the answers; bad --workers values exit
 2 naming the option. Every wait is bounded; the long requests
 are calibrated on this machine (and build), so the test also runs under a sanitizer."""
-import json
 import os
 import re
 import signal
@@ -22,7 +21,7 @@ import lcm_test_util as u
 args = u.parse_args(extra=[("--server", {"default": None,
                                          "help": "pool-shot-server to test (default: the build's)"})])
 import lcm  # noqa: E402
-from pool_lcm import shot_request_t, shot_t  # noqa: E402
+from pool_lcm import shot_t  # noqa: E402
 
 SERVER = args.server or os.path.join(args.bin_dir, "pool-shot-server")
 SLACK = 1.0  # s allowed past a deadline on a loaded 2-core machine
@@ -32,48 +31,22 @@ want = {n: u.pool_sim_json(args.bin_dir, os.path.join(args.data_dir, n + ".json"
         for n in names}
 
 
-def grid(n, max_events):
-    """n small frictionless balls, all moving, perfectly elastic, tiny pockets (as in
-    test_shot_server_limits.py): the shot practically never ends by itself, so it stops at
-    max_events (the scenario's own limit, an ordinary answer) or at the server's budget."""
-    r, balls, i, y = 0.005, [], 0, 0.05
-    while i < n:
-        x = 0.05
-        while x < 2.49 and i < n:
-            balls.append({"id": i, "pos": [round(x, 6), round(y, 6)],
-                          "vel": [0.3 if i % 2 else -0.2, 0.25 if i % 3 else -0.1, 0.0]})
-            i, x = i + 1, x + 2.5 * r
-        y += 2.5 * r
-    return json.dumps({
-        "format": "libpool-scenario/1",
-        "table": {"preset": "wpa-9ft", "cushion_height": 0.0065, "corner_mouth": 0.0101,
-                  "side_mouth": 0.0101},
-        "params": {"ball_radius": r, "mu_slide": 0.0, "mu_roll": 0.0, "mu_spin": 0.0,
-                   "e_ball": 1.0, "e_cushion": 1.0},
-        "options": {"max_time": 1e9, "max_events": max_events},
-        "balls": balls})
-
-
 # The long request: 3000 events of 1000 balls (about 0.5 s in a Release build, a few hundred KB of
 # answer); the endless one: the same balls without an event limit of their own.
 LONG_EVENTS = 3000
-long_text = grid(1000, LONG_EVENTS)
+long_text = u.ball_grid(1000, max_events=LONG_EVENTS)
 long_path = os.path.join(args.work_dir, "long.json")
 with open(long_path, "w") as f:
     f.write(long_text)
 want_long = u.pool_sim_json(args.bin_dir, long_path, args.work_dir)
-endless = grid(1000, 2 ** 31 - 1)
+endless = u.ball_grid(1000)
 
 answers = u.Collector(u.URL, ["POOL_SHOT"])
 client = lcm.LCM(u.URL)
 
 
 def request(request_id, text):
-    msg = shot_request_t()
-    msg.utime = int(time.time() * 1e6)
-    msg.request_id = request_id
-    msg.scenario_json = text
-    client.publish("POOL_SHOT_REQUEST", msg.encode())
+    u.publish_request(client, request_id, text)
 
 
 got = {}    # request_id -> (shot_t, monotonic time this test received the answer)
