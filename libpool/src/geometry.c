@@ -12,10 +12,6 @@ double pool_table_contact_distance(const pool_table_def *table, double ball_radi
 	return sqrt(ball_radius * ball_radius - d * d);
 }
 
-double pool_outside_contact_lines(const pool_table_def *table, double dc, pool_vec3 pos) {
-	return fmax(fmax(dc - pos.x, pos.x - (table->length - dc)), fmax(dc - pos.y, pos.y - (table->width - dc)));
-}
-
 pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along) {
 	const double L = table->length, W = table->width;
 	const double corner = table->corner_mouth / sqrt(2.0);
@@ -47,13 +43,10 @@ pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double a
 pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail) {
 	pool_vec3 nose = pos; // nearest point of the nose line: same coordinate along the rail
 	nose.z = table->cushion_height;
-	switch (rail) {
-	case POOL_RAIL_SOUTH: nose.y = 0.0; break;
-	case POOL_RAIL_NORTH: nose.y = table->width; break;
-	case POOL_RAIL_WEST: nose.x = 0.0; break;
-	case POOL_RAIL_EAST: nose.x = table->length; break;
-	default: break;
-	}
+	if (pool_rail_along_x(rail))
+		nose.y = pool_rail_nose_line(table, rail);
+	else
+		nose.x = pool_rail_nose_line(table, rail);
 	pool_vec3 d = pool_v3_sub(pos, nose);
 	return pool_v3_scale(d, 1.0 / pool_v3_len(d));
 }

@@ -7,27 +7,24 @@
 #include "pool/event.h"
 #include "pool/table.h"
 
-/// Coordinate of a rail's contact line for a ball on the cloth: y for the south and north
-/// rails, x for the west and east rails (the centre is pool_table_contact_distance from the nose
-/// line there). Inline, like the two below: every segment start asks them for four rails.
-static inline double pool_rail_contact_line(const pool_table_def *table, double contact_distance, pool_rail rail) {
-	switch (rail) {
-	case POOL_RAIL_SOUTH:
-	case POOL_RAIL_WEST: return contact_distance;
-	case POOL_RAIL_NORTH: return table->width - contact_distance;
-	case POOL_RAIL_EAST: return table->length - contact_distance;
-	default: return 0.0;
-	}
-}
-
 /// +1 for the north and east rails (reached by increasing the coordinate), -1 for south, west.
 static inline double pool_rail_side(pool_rail rail) { return rail == POOL_RAIL_NORTH || rail == POOL_RAIL_EAST ? 1.0 : -1.0; }
 
 /// 1 for the south and north rails (their coordinate is y, the motion along them x), else 0.
 static inline int pool_rail_along_x(pool_rail rail) { return rail == POOL_RAIL_SOUTH || rail == POOL_RAIL_NORTH; }
 
-/// How far (m) the centre at pos lies beyond the nearest cushion contact line (negative inside).
-double pool_outside_contact_lines(const pool_table_def *table, double contact_distance, pool_vec3 pos);
+/// Coordinate of a rail's nose line, the table's edge: y = 0 (south), W (north), x = 0 (west),
+/// L (east).
+static inline double pool_rail_nose_line(const pool_table_def *table, pool_rail rail) {
+	return rail == POOL_RAIL_NORTH ? table->width : rail == POOL_RAIL_EAST ? table->length : 0.0;
+}
+
+/// Coordinate of a rail's contact line for a ball on the cloth: contact_distance inside its nose
+/// line (the centre is pool_table_contact_distance from the nose there). Inline, like the three
+/// above: every segment start asks them for four rails.
+static inline double pool_rail_contact_line(const pool_table_def *table, double contact_distance, pool_rail rail) {
+	return pool_rail_nose_line(table, rail) - pool_rail_side(rail) * contact_distance;
+}
 
 /// Pocket whose mouth contains a contact with `rail` at coordinate `along` (x on the south and
 /// north rails, y on the west and east rails), or POOL_POCKET_NONE. A side pocket of mouth w

@@ -125,15 +125,6 @@ double pool_predict_cushion(const pool_table_def *table, double R, const pool_ba
 	return best;
 }
 
-// Coordinate of the nose line of a rail (the table's edge): y = 0 / W, x = 0 / L.
-static double nose_line(const pool_table_def *table, pool_rail rail) {
-	switch (rail) {
-	case POOL_RAIL_NORTH: return table->width;
-	case POOL_RAIL_EAST: return table->length;
-	default: return 0.0;
-	}
-}
-
 double pool_predict_flight(const pool_table_def *table, double R, const pool_ball_state *s, pool_vec3 acc, double T,
                            pool_event_type *kind, pool_rail *rail, pool_pocket *pocket) {
 	const double dc = pool_table_contact_distance(table, R), h = table->cushion_height;
@@ -159,7 +150,7 @@ double pool_predict_flight(const pool_table_def *table, double R, const pool_bal
 		const double window = fmin(best, T);
 		// The nose line in the rail's normal plane: distance from it (u inwards, w up) equal to R,
 		// the ball-ball quartic with one "ball" of radius 0 (radius R/2 for the pair).
-		const double n = nose_line(table, rr);
+		const double n = pool_rail_nose_line(table, rr);
 		const pool_vec3 dp = pool_v3(side * (n - q0), s->pos.z - h, 0.0);
 		const pool_vec3 dv = pool_v3(-side * vq, s->vel.z, 0.0), da = pool_v3(-0.5 * side * aq, 0.5 * acc.z, 0.0);
 		double t = pool_predict_ball_ball(dp, dv, da, 0.5 * R, window);

@@ -128,11 +128,9 @@ void pool_segment_state(const pool_segment *seg, const pool_params *p, double ta
 	if (!(tau > 0.0))
 		return;
 	pool_segment_path(seg, tau, &out->pos, &out->vel);
-	const pool_vec3 wz_kept = out->omega;
+	// The model sets the spin perpendicular to z and keeps the start's z-spin, which on the
+	// cloth decays linearly until spin_end.
 	seg->model->spin(p, s0, fmin(tau, seg->move_end), out->vel, &out->omega);
-	out->omega.z = wz_kept.z;
-	if (isfinite(seg->spin_end) || (seg->model->on_cloth && s0->omega.z != 0.0)) {
-		const double t = fmin(tau, seg->spin_end);
-		out->omega.z = s0->omega.z - copysign(spin_rate(p) * t, s0->omega.z);
-	}
+	if (seg->model->on_cloth && s0->omega.z != 0.0)
+		out->omega.z = s0->omega.z - copysign(spin_rate(p) * fmin(tau, seg->spin_end), s0->omega.z);
 }
