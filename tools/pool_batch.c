@@ -26,6 +26,7 @@
 #include "json_writer.h"
 #include "read_input.h"
 #include "scenario.h"
+#include "text_buffer.h"
 #include "text_escape.h"
 
 #define PROGRAM "pool-batch"
@@ -124,32 +125,10 @@ static bool parse_int32(const char *text, int32_t *out) {
 	return true;
 }
 
-/// Growing text buffer.
-typedef struct sbuf {
-	char *data;
-	size_t length, capacity;
-	bool failed;
-} sbuf;
+/// Output rows and files are built in the tools' growing text buffer.
+typedef pool_text_buffer sbuf;
 
-static void sb_put(sbuf *b, const char *text, size_t n) {
-	if (b->failed)
-		return;
-	if (b->length + n + 1 > b->capacity) {
-		size_t capacity = b->capacity ? b->capacity : 1024;
-		while (b->length + n + 1 > capacity)
-			capacity *= 2;
-		char *data = realloc(b->data, capacity);
-		if (!data) {
-			b->failed = true;
-			return;
-		}
-		b->data = data;
-		b->capacity = capacity;
-	}
-	memcpy(b->data + b->length, text, n);
-	b->length += n;
-	b->data[b->length] = '\0';
-}
+static void sb_put(sbuf *b, const char *text, size_t n) { pool_text_append(b, text, n); }
 
 static void sb_str(sbuf *b, const char *text) { sb_put(b, text, strlen(text)); }
 

@@ -13,40 +13,22 @@ void pool_jw_init(pool_jw *w, bool pretty) {
 }
 
 void pool_jw_discard(pool_jw *w) {
-	free(w->data);
+	free(w->out.data);
 	memset(w, 0, sizeof *w);
 }
 
 char *pool_jw_finish(pool_jw *w) {
-	if (w->failed || w->depth != 0 || !w->data) {
+	if (w->out.failed || w->depth != 0 || !w->out.data) {
 		pool_jw_discard(w);
 		return NULL;
 	}
-	char *text = w->data;
-	w->data = NULL;
+	char *text = w->out.data;
+	w->out.data = NULL;
 	pool_jw_discard(w);
 	return text;
 }
 
-static void put(pool_jw *w, const char *text, size_t n) {
-	if (w->failed)
-		return;
-	if (w->length + n + 1 > w->capacity) {
-		size_t capacity = w->capacity ? w->capacity : 4096;
-		while (w->length + n + 1 > capacity)
-			capacity *= 2;
-		char *data = realloc(w->data, capacity);
-		if (!data) {
-			w->failed = true;
-			return;
-		}
-		w->data = data;
-		w->capacity = capacity;
-	}
-	memcpy(w->data + w->length, text, n);
-	w->length += n;
-	w->data[w->length] = '\0';
-}
+static void put(pool_jw *w, const char *text, size_t n) { pool_text_append(&w->out, text, n); }
 
 static void puts_(pool_jw *w, const char *text) { put(w, text, strlen(text)); }
 
@@ -81,7 +63,7 @@ static void before_item(pool_jw *w) {
 static void open(pool_jw *w, char c, bool inline_) {
 	before_item(w);
 	if (w->depth + 1 >= POOL_JW_MAX_DEPTH) {
-		w->failed = true;
+		w->out.failed = true;
 		return;
 	}
 	put(w, &c, 1);
@@ -96,7 +78,7 @@ void pool_jw_array(pool_jw *w, bool inline_) { open(w, '[', inline_); }
 
 void pool_jw_end(pool_jw *w, char close) {
 	if (w->depth <= 0) {
-		w->failed = true;
+		w->out.failed = true;
 		return;
 	}
 	bool empty = w->first[w->depth];

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "pool/base.h"
+#include "text_buffer.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -19,10 +20,8 @@ extern "C" {
 
 /// Growing output buffer plus the nesting state needed for commas and indentation.
 typedef struct pool_jw {
-	char *data;                         ///< NUL-terminated output (owned until pool_jw_finish)
-	size_t length;                      ///< bytes written, without the NUL
-	size_t capacity;                    ///< bytes allocated
-	bool failed;                        ///< an allocation failed or nesting went too deep
+	pool_text_buffer out;               ///< the output (owned until pool_jw_finish); its
+	                                    ///< `failed` also marks nesting that went too deep
 	bool pretty;                        ///< indent containers that are not inline
 	int depth;                          ///< current nesting depth
 	bool first[POOL_JW_MAX_DEPTH];      ///< no element written yet at this depth
