@@ -22,43 +22,13 @@
 #include "runner.h"
 #include "scenario_file.h"
 
+#include "compare_test.h"
+
 using namespace pool_compare;
 
 namespace {
 
-int failures = 0;
-
-#define CHECK(cond, ...)                                                                                   \
-	do {                                                                                                   \
-		if (!(cond)) {                                                                                     \
-			++failures;                                                                                    \
-			std::printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                    \
-			std::printf(__VA_ARGS__);                                                                      \
-			std::printf("\n");                                                                             \
-		}                                                                                                  \
-	} while (0)
-
-std::string scenario_dir;
-
-std::unique_ptr<Scenario> load(const std::string &name) {
-	std::unique_ptr<Scenario> s;
-	std::string error;
-	if (!load_scenario(scenario_dir + "/" + name + ".json", &s, &error)) {
-		std::printf("FAIL cannot load %s: %s\n", name.c_str(), error.c_str());
-		++failures;
-	}
-	return s;
-}
-
-std::unique_ptr<Scenario> from_text(const std::string &name, const std::string &json) {
-	std::unique_ptr<Scenario> s;
-	std::string error;
-	if (!parse_scenario(name, json, &s, &error)) {
-		std::printf("FAIL cannot parse %s: %s\n", name.c_str(), error.c_str());
-		++failures;
-	}
-	return s;
-}
+using namespace compare_test;
 
 // Petit's cloth impact (PHYSICS.md "Collisions", n = k, N = e_table, mu = mu_table), by hand.
 void cloth_impact_matches_petit() {
@@ -452,6 +422,5 @@ int main(int argc, char **argv) {
 			time_stepped = true;
 		}
 	}
-	std::printf("%s (%d failures)\n", failures ? "FAILED" : "passed", failures);
-	return failures ? 1 : 0;
+	return finish();
 }

@@ -21,33 +21,13 @@
 #include "runner.h"
 #include "scenario_file.h"
 
+#include "compare_test.h"
+
 using namespace pool_compare;
 
 namespace {
 
-int failures = 0;
-
-#define CHECK(cond, ...)                                                                                   \
-	do {                                                                                                   \
-		if (!(cond)) {                                                                                     \
-			++failures;                                                                                    \
-			std::printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                    \
-			std::printf(__VA_ARGS__);                                                                      \
-			std::printf("\n");                                                                             \
-		}                                                                                                  \
-	} while (0)
-
-std::string scenario_dir;
-
-std::unique_ptr<Scenario> load(const std::string &name) {
-	std::unique_ptr<Scenario> s;
-	std::string error;
-	if (!load_scenario(scenario_dir + "/" + name + ".json", &s, &error)) {
-		std::printf("FAIL cannot load %s: %s\n", name.c_str(), error.c_str());
-		++failures;
-	}
-	return s;
-}
+using namespace compare_test;
 
 // ENGINES.md: a 2 m/s pure slide rolls at 0.29125 s at 5/7 of the speed, stops at 14.85 s after 10.901 m.
 void closed_form_matches_engines_md() {
@@ -365,6 +345,5 @@ int main(int argc, char **argv) {
 		if (std::string(plugin.api->name) == "libpool")
 			isolated_runs(plugin);
 	}
-	std::printf("%s (%d failures)\n", failures ? "FAILED" : "passed", failures);
-	return failures ? 1 : 0;
+	return finish();
 }
