@@ -2,7 +2,8 @@
 // forms computed here from the spec, never from the library: a dropped ball's impact times and
 // rebounds (VALIDATION.md 9: e_table^2 of the height), a throw's landing point, a jump strike's
 // rebound off the cloth and its landing, the nose-line contact of a flying ball (bisection on the
-// distance), leaving the table, a ball falling on a resting one (momentum, energy). Then
+// distance), leaving the table, a ball falling on a resting one (momentum, energy), a hop off a
+// cushion. Then
 // invariants over random airborne shots: energy (kinetic + potential) never increases across an
 // event, no interpenetration and no ball under the cloth (sampled densely), bounded event counts,
 // determinism.
@@ -243,6 +244,43 @@ static void test_falling_on_resting(void **state) {
 	pool_sim_destroy(sim);
 }
 
+// A hop off a cushion (PHYSICS.md "Ball–cushion": the nose above the centre presses the ball
+// into the cloth). A ball rolling straight into the north rail at v meets the nose with
+// c = sqrt(R^2 - (h - R)^2) / R and s = (h - R) / R; Petit's law (slipping, as test_collision
+// works out by hand) leaves it v_z' = (1 + e_cushion) c v (mu_cushion c - s) < 0, into the cloth.
+// At that same instant the cloth answers (n = k): v_z'' = -e_table v_z', and the ball hops,
+// landing 2 v_z'' / g later. v is the rolling closed form's speed at the rail,
+// sqrt(v0^2 - 2 mu_roll g d) after the distance d to the contact line.
+static void test_cushion_hop(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	const pool_params *p = &def.params;
+	const double R = p->ball_radius, g = p->g, h = def.table.cushion_height, W = def.table.width;
+	const double c = sqrt(R * R - (h - R) * (h - R)) / R, sn = (h - R) / R;
+	const double v0 = 2.0, d = 0.01;
+	pool_sim *sim = make(&def);
+	add(sim, 0, pool_v3(1.0, W - c * R - d, R), pool_v3(0, v0, 0), pool_v3(-v0 / R, 0, 0));
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int n;
+	const pool_event *ev = pool_sim_events(sim, &n);
+	assert_true(n >= 3);
+	assert_int_equal(ev[0].type, POOL_EVENT_BALL_CUSHION);
+	assert_int_equal(ev[0].rail, POOL_RAIL_NORTH);
+	const double v = sqrt(v0 * v0 - 2.0 * p->mu_roll * g * d);
+	near_rel(ev[0].time, (v0 - v) / (p->mu_roll * g), 1e-9);
+	const double vz1 = (1.0 + p->e_cushion) * c * v * (p->mu_cushion * c - sn);
+	assert_true(vz1 < 0.0);
+	near_rel(pool_sim_event_states(sim, &ev[0])->vel.z, vz1, 1e-9);
+	assert_int_equal(ev[1].type, POOL_EVENT_BALL_TABLE);
+	assert_true(ev[1].time == ev[0].time);
+	const pool_ball_state *up = pool_sim_event_states(sim, &ev[1]);
+	near_rel(up->vel.z, -p->e_table * vz1, 1e-9);
+	assert_int_equal(up->motion, POOL_MOTION_AIRBORNE);
+	assert_int_equal(ev[2].type, POOL_EVENT_BALL_TABLE);
+	near_rel(ev[2].time - ev[1].time, 2.0 * up->vel.z / g, 1e-9);
+	pool_sim_destroy(sim);
+}
+
 static uint64_t rng = 0x243F6A8885A308D3ull;
 static double urand(void) {
 	rng ^= rng << 13;
@@ -420,6 +458,7 @@ int main(void) {
 		cmocka_unit_test(test_nose_contact_in_flight),
 		cmocka_unit_test(test_off_table),
 		cmocka_unit_test(test_falling_on_resting),
+		cmocka_unit_test(test_cushion_hop),
 		cmocka_unit_test(test_random_airborne_shots),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
