@@ -44,6 +44,14 @@ pool_params pool_default_params(void) {
 	p.ball_radius = 0.028575;
 	p.ball_mass = 0.17;
 	p.cue_mass = 0.54;
+	// Alciatore TP A.14's fit of Marlow's ball-ball friction against slip speed.
+	p.throw_a = 9.951e-3;
+	p.throw_b = 0.108;
+	p.throw_c = 1.088;
+	// A standard maple shaft: with a 0.17 kg ball a half-radius offset squirts 2.5 degrees
+	// (TP A.31's formula), within the 2-3 degrees Alciatore's cue test machine reports for
+	// standard shafts at that offset.
+	p.cue_end_mass = 0.008;
 	return p;
 }
 
@@ -112,7 +120,11 @@ pool_result pool_params_validate(const pool_params *p, pool_error *error) {
 	    (r = unit_interval(p->e_table, "params.e_table", error)) ||
 	    (r = positive(p->ball_radius, "params.ball_radius", error)) ||
 	    (r = positive(p->ball_mass, "params.ball_mass", error)) ||
-	    (r = positive(p->cue_mass, "params.cue_mass", error)))
+	    (r = positive(p->cue_mass, "params.cue_mass", error)) ||
+	    (r = non_negative(p->throw_a, "params.throw_a", error)) ||
+	    (r = non_negative(p->throw_b, "params.throw_b", error)) ||
+	    (r = non_negative(p->throw_c, "params.throw_c", error)) ||
+	    (r = positive(p->cue_end_mass, "params.cue_end_mass", error)))
 		return r;
 	// The strike and collision laws divide by m R^2 and 2 m R: when those underflow (a subnormal
 	// mass such as 4.9e-324 kg) or overflow, spins come out NaN (found by test_scenario_fuzz).

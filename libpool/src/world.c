@@ -22,6 +22,7 @@
 #include "contact.h"
 #include "error.h"
 #include "handlers.h"
+#include "models.h"
 #include "motion.h"
 #include "pool/sim.h"
 #include "schedule.h"
@@ -74,6 +75,8 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "options.max_events: must be > 0");
 	if ((def->allocator.alloc == NULL) != (def->allocator.free == NULL))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "allocator: alloc and free must both be set");
+	if ((r = pool_models_validate(&def->models, error)))
+		return r;
 	return pool_error_ok(error);
 }
 

@@ -11,7 +11,8 @@ import threading
 from ctypes import POINTER, c_bool, c_char, c_char_p, c_double, c_int, c_int32, c_void_p
 
 __all__ = [
-    "Vec3", "TableDef", "Params", "BallState", "Strike", "Event", "Allocator", "SimDef", "Error",
+    "Vec3", "TableDef", "Params", "BallState", "Strike", "Event", "Allocator", "Models", "SimDef",
+    "Error",
     "STRUCTS", "load", "library_path",
 ]
 
@@ -53,7 +54,8 @@ class Params(_Struct):
     """pool_params: physical parameters, names and units as in PHYSICS.md."""
     _fields_ = [(n, c_double) for n in (
         "g", "mu_slide", "mu_roll", "mu_spin", "mu_ball", "e_ball", "mu_cushion", "e_cushion",
-        "mu_table", "e_table", "ball_radius", "ball_mass", "cue_mass")]
+        "mu_table", "e_table", "ball_radius", "ball_mass", "cue_mass",
+        "throw_a", "throw_b", "throw_c", "cue_end_mass")]
 
 
 class BallState(_Struct):
@@ -78,10 +80,16 @@ class Allocator(_Struct):
     _fields_ = [("alloc", c_void_p), ("free", c_void_p), ("context", c_void_p)]
 
 
+class Models(_Struct):
+    """pool_models: cushion, ball_ball_friction, squirt (C enum values; 0 is the default law)."""
+    _fields_ = [("cushion", c_int), ("ball_ball_friction", c_int), ("squirt", c_int)]
+
+
 class SimDef(_Struct):
-    """pool_sim_def: table, params, airborne, max_time, max_events, allocator."""
+    """pool_sim_def: table, params, airborne, max_time, max_events, allocator, models."""
     _fields_ = [("table", TableDef), ("params", Params), ("airborne", c_bool),
-                ("max_time", c_double), ("max_events", c_int), ("allocator", Allocator)]
+                ("max_time", c_double), ("max_events", c_int), ("allocator", Allocator),
+                ("models", Models)]
 
 
 class Error(_Struct):
@@ -93,7 +101,7 @@ class Error(_Struct):
 STRUCTS = {
     "pool_vec3": Vec3, "pool_table_def": TableDef, "pool_params": Params,
     "pool_ball_state": BallState, "pool_strike": Strike, "pool_event": Event,
-    "pool_allocator": Allocator, "pool_sim_def": SimDef, "pool_error": Error,
+    "pool_allocator": Allocator, "pool_models": Models, "pool_sim_def": SimDef, "pool_error": Error,
 }
 
 _sim_p = c_void_p  # pool_sim * (opaque)

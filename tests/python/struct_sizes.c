@@ -29,7 +29,8 @@ int main(void) {
 	FIELD(pool_params, mu_cushion, 0); FIELD(pool_params, e_cushion, 0);
 	FIELD(pool_params, mu_table, 0); FIELD(pool_params, e_table, 0);
 	FIELD(pool_params, ball_radius, 0); FIELD(pool_params, ball_mass, 0);
-	FIELD(pool_params, cue_mass, 1);
+	FIELD(pool_params, cue_mass, 0); FIELD(pool_params, throw_a, 0); FIELD(pool_params, throw_b, 0);
+	FIELD(pool_params, throw_c, 0); FIELD(pool_params, cue_end_mass, 1);
 	begin("pool_ball_state", sizeof(pool_ball_state));
 	FIELD(pool_ball_state, id, 0); FIELD(pool_ball_state, motion, 0); FIELD(pool_ball_state, pos, 0);
 	FIELD(pool_ball_state, vel, 0); FIELD(pool_ball_state, omega, 1);
@@ -41,18 +42,22 @@ int main(void) {
 	FIELD(pool_event, pocket, 0); FIELD(pool_event, ball_count, 0); FIELD(pool_event, first_state, 1);
 	begin("pool_allocator", sizeof(pool_allocator));
 	FIELD(pool_allocator, alloc, 0); FIELD(pool_allocator, free, 0); FIELD(pool_allocator, context, 1);
+	begin("pool_models", sizeof(pool_models));
+	FIELD(pool_models, cushion, 0); FIELD(pool_models, ball_ball_friction, 0); FIELD(pool_models, squirt, 1);
 	begin("pool_sim_def", sizeof(pool_sim_def));
 	FIELD(pool_sim_def, table, 0); FIELD(pool_sim_def, params, 0); FIELD(pool_sim_def, airborne, 0);
 	FIELD(pool_sim_def, max_time, 0); FIELD(pool_sim_def, max_events, 0);
-	FIELD(pool_sim_def, allocator, 1);
+	FIELD(pool_sim_def, allocator, 0); FIELD(pool_sim_def, models, 1);
 	begin("pool_error", sizeof(pool_error));
 	FIELD(pool_error, message, 1);
 	// Enumerations travel as C int in the mirror: check that is their size.
 	printf(", \"enum_sizes\": {\"pool_motion\": %zu, \"pool_event_type\": %zu, \"pool_rail\": %zu, "
 	       "\"pool_pocket\": %zu, \"pool_result\": %zu, \"pool_stop_reason\": %zu, "
-	       "\"pool_rack_kind\": %zu}",
+	       "\"pool_rack_kind\": %zu, \"pool_cushion_model\": %zu, \"pool_ball_friction_model\": %zu, "
+	       "\"pool_squirt_model\": %zu}",
 	       sizeof(pool_motion), sizeof(pool_event_type), sizeof(pool_rail), sizeof(pool_pocket),
-	       sizeof(pool_result), sizeof(pool_stop_reason), sizeof(pool_rack_kind));
+	       sizeof(pool_result), sizeof(pool_stop_reason), sizeof(pool_rack_kind),
+	       sizeof(pool_cushion_model), sizeof(pool_ball_friction_model), sizeof(pool_squirt_model));
 	printf("}\n");
 	return 0;
 }

@@ -20,6 +20,42 @@ typedef struct pool_sim pool_sim;
 /// Overlap below which two balls count as touching, not interpenetrating (rounding of racks).
 #define POOL_TOUCH_TOLERANCE 1e-9
 
+/// Cushion law (PHYSICS.md "Cushion" and "Optional models").
+typedef enum pool_cushion_model {
+	POOL_CUSHION_PETIT = 0,       ///< "petit": Petit's 3D impulse (the default)
+	POOL_CUSHION_MATHAVAN2010 = 1 ///< "mathavan2010": cushion and cloth contacts through the impact
+} pool_cushion_model;
+
+/// Ball-ball friction law.
+typedef enum pool_ball_friction_model {
+	POOL_BALL_FRICTION_CONSTANT = 0, ///< "constant": params.mu_ball (the default)
+	POOL_BALL_FRICTION_ALCIATORE = 1 ///< "alciatore": throw_a + throw_b exp(-throw_c v_rel)
+} pool_ball_friction_model;
+
+/// Squirt of an off-centre strike.
+typedef enum pool_squirt_model {
+	POOL_SQUIRT_NONE = 0,   ///< "none": the ball leaves along the cue (the default)
+	POOL_SQUIRT_ENDMASS = 1 ///< "endmass": turned by the cue end mass (params.cue_end_mass)
+} pool_squirt_model;
+
+/// The optional models of a simulation; all zero means the default laws.
+typedef struct pool_models {
+	pool_cushion_model cushion;
+	pool_ball_friction_model ball_ball_friction;
+	pool_squirt_model squirt;
+} pool_models;
+
+/// Model names as in INTERFACES.md ("petit", "mathavan2010", "constant", "alciatore", "none",
+/// "endmass"); "unknown" for a value out of range.
+POOL_API const char *pool_cushion_model_name(pool_cushion_model model);
+POOL_API const char *pool_ball_friction_model_name(pool_ball_friction_model model);
+POOL_API const char *pool_squirt_model_name(pool_squirt_model model);
+
+/// The model of that name, or -1 when the name is unknown (or NULL).
+POOL_API int pool_cushion_model_from_name(const char *name);
+POOL_API int pool_ball_friction_model_from_name(const char *name);
+POOL_API int pool_squirt_model_from_name(const char *name);
+
 /// Everything that defines a simulation apart from its balls.
 typedef struct pool_sim_def {
 	pool_table_def table;     ///< geometry
@@ -28,9 +64,10 @@ typedef struct pool_sim_def {
 	double max_time;          ///< s, the shot stops at this time even if balls still move
 	int max_events;           ///< the shot stops after this many events
 	pool_allocator allocator; ///< optional; zero means malloc/free
+	pool_models models;       ///< optional models; zero means the default laws
 } pool_sim_def;
 
-/// WPA 9 ft table, PHYSICS.md parameters, planar, max_time 120 s, max_events 100000.
+/// WPA 9 ft table, PHYSICS.md parameters, planar, max_time 120 s, max_events 100000, default models.
 POOL_API pool_sim_def pool_default_sim_def(void);
 
 /// Why the shot ended (or POOL_STOP_NONE while it runs).

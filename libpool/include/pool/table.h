@@ -39,6 +39,11 @@ typedef struct pool_params {
 	double ball_radius; ///< m
 	double ball_mass;   ///< kg
 	double cue_mass;    ///< kg
+	// Parameters of the optional models (PHYSICS.md "Optional models"; used only when selected).
+	double throw_a;      ///< 1, ball_ball_friction "alciatore": mu(v) = throw_a + throw_b exp(-throw_c v)
+	double throw_b;      ///< 1, see throw_a
+	double throw_c;      ///< s/m, see throw_a
+	double cue_end_mass; ///< kg, squirt "endmass": the cue's effective end mass (Alciatore TP A.31)
 } pool_params;
 
 /// PHYSICS.md defaults.
