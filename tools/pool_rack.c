@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "json_writer.h"
+#include "models_json.h"
 #include "scenario.h"
 
 #define PROGRAM "pool-rack"
@@ -28,12 +29,13 @@ typedef struct rack_options {
 	const char *table;  ///< preset name
 	const char *output; ///< NULL = standard output
 	bool airborne;
+	pool_models models; ///< --model choices (zero: the default models)
 	bool help;
 } rack_options;
 
 static const char usage_text[] =
 	"usage: pool-rack 8ball|9ball [--speed V] [--gap G] [--spin A,B] [--phi DEG] [--theta DEG]\n"
-	"                 [--table PRESET] [--airborne] [-o FILE]\n"
+	"                 [--table PRESET] [--airborne] [--model KIND=NAME ...] [-o FILE]\n"
 	"\n"
 	"Writes a libpool-scenario/1 file: the cue ball (id 0) on the head spot, a standard rack\n"
 	"(8ball: ids 1..15, 9ball: ids 1..9) with its apex on the foot spot, and a break strike.\n"
@@ -45,8 +47,32 @@ static const char usage_text[] =
 	"  --theta DEG     cue elevation in degrees (default 0)\n"
 	"  --table PRESET  wpa-9ft (default), wpa-8ft or wpa-7ft\n"
 	"  --airborne      enable airborne motion in the scenario's options\n"
+	"  --model KIND=NAME  a model of the scenario's \"models\" (repeatable): cushion=petit|\n"
+	"                  mathavan2010, ball_ball_friction=constant|alciatore, squirt=none|endmass\n"
 	"  -o FILE         write to FILE (atomically) instead of standard output\n"
 	"  -h, --help      show this help\n";
+
+// --model KIND=NAME: one kind of the scenario's "models" (models_json.h). Returns 0 or the usage
+// error's exit status.
+static int parse_model(const char *value, pool_models *models) {
+	char buffer[128], known[128];
+	snprintf(buffer, sizeof buffer, "%s", value);
+	char *equals = strchr(buffer, '=');
+	if (equals)
+		*equals = '\0';
+	int r = equals ? pool_models_set(models, buffer, equals + 1) : -1;
+	if (r == -1) {
+		pool_model_names(NULL, known, sizeof known);
+		return pool_cli_usage_error(PROGRAM, "--model: '%s' is not KIND=NAME (KIND among %s)",
+		                            pool_cli_arg(value), known);
+	}
+	if (r == -2) {
+		pool_model_names(buffer, known, sizeof known);
+		return pool_cli_usage_error(PROGRAM, "--model: unknown %s model '%s' (%s)", buffer,
+		                            pool_cli_arg(equals + 1), known);
+	}
+	return 0;
+}
 
 static int parse_options(int argc, char **argv, rack_options *o) {
 	memset(o, 0, sizeof *o);
@@ -69,7 +95,8 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 			o->airborne = true;
 		} else if (a[0] == '-' && a[1] != '\0' && !value) {
 			if (strcmp(a, "--speed") && strcmp(a, "--gap") && strcmp(a, "--spin") &&
-			    strcmp(a, "--phi") && strcmp(a, "--theta") && strcmp(a, "--table") && strcmp(a, "-o"))
+			    strcmp(a, "--phi") && strcmp(a, "--theta") && strcmp(a, "--table") && strcmp(a, "-o") &&
+			    strcmp(a, "--model"))
 				return pool_cli_usage_error(PROGRAM, "unknown option '%s'", pool_cli_arg(a));
 			return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
 		} else if (strcmp(a, "--speed") == 0) {
@@ -111,6 +138,11 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 				return pool_cli_usage_error(PROGRAM, "--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft)",
 				                            pool_cli_arg(value));
 			o->table = value;
+			++i;
+		} else if (strcmp(a, "--model") == 0) {
+			int status = parse_model(value, &o->models);
+			if (status)
+				return status;
 			++i;
 		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
 			o->output = value;
@@ -172,6 +204,8 @@ static char *scenario_json(const rack_options *o, const pool_ball_state *balls, 
 	pool_jw_key(&w, "b");
 	pool_jw_number(&w, o->b);
 	pool_jw_end(&w, '}');
+	if (!pool_models_are_default(&o->models))
+		pool_jw_models(&w, &o->models);
 	if (o->airborne) {
 		pool_jw_key(&w, "options");
 		pool_jw_object(&w, true);

@@ -25,13 +25,14 @@ from typing import Optional, Tuple
 
 from . import _ffi
 from ._ffi import Allocator, BallState as CBallState, Error as CError, Event as CEvent, Params
-from ._ffi import SimDef, Strike, TableDef, Vec3, library_path
+from ._ffi import Models, SimDef, Strike, TableDef, Vec3, library_path
 
 __all__ = [
     "PoolError", "Ball", "EventRecord", "Sim", "TableDef", "Params", "Strike", "SimDef", "Vec3",
     "Allocator", "table_preset", "default_table", "default_params", "default_sim_def",
     "validate_table", "validate_params", "strike_velocities", "rack", "break_strike",
     "quartic_real_roots", "quartic_smallest_root_in", "library_path", "RESULT_NAMES",
+    "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict",
 ]
 
 # pool_result values by name (pool/base.h).
@@ -245,6 +246,83 @@ def _rack_c(kind, gap, table, params):
     return out[:n]
 
 
+# ---- models (PHYSICS.md "Optional models") ------------------------------------------------------
+
+# The keys of a scenario's "models" object, with the C functions naming their models.
+MODEL_KINDS = ("cushion", "ball_ball_friction", "squirt")
+_MODEL_FUNCTIONS = {
+    "cushion": ("pool_cushion_model_name", "pool_cushion_model_from_name"),
+    "ball_ball_friction": ("pool_ball_friction_model_name", "pool_ball_friction_model_from_name"),
+    "squirt": ("pool_squirt_model_name", "pool_squirt_model_from_name"),
+}
+_MAX_MODELS_PER_KIND = 16  # model enumerations are small; bounds the search for their names
+
+
+def model_names(kind):
+    """The names of one kind's models, the default first, as the library knows them:
+    model_names("cushion") == ["petit", "mathavan2010"]. An unknown kind raises PoolError."""
+    if kind not in _MODEL_FUNCTIONS:
+        raise PoolError(_ERR_INVALID_ARGUMENT,
+                        f"models.{kind}: unknown field ({', '.join(MODEL_KINDS)})")
+    name_fn, from_name = _MODEL_FUNCTIONS[kind]
+    names = []
+    for m in range(_MAX_MODELS_PER_KIND):
+        name = _name(name_fn, m)
+        # A value is a model when its name reads back as itself (the library's one list).
+        if name is not None and getattr(_lib(), from_name)(name.encode()) == m:
+            names.append(name)
+    return names
+
+
+def _model_value(kind, name):
+    """The enum value of a model by name, or None when the library does not know it."""
+    if not isinstance(name, str) or "\0" in name:
+        return None
+    try:
+        encoded = name.encode("utf-8")
+    except UnicodeEncodeError:
+        return None
+    value = getattr(_lib(), _MODEL_FUNCTIONS[kind][1])(encoded)
+    return value if value >= 0 else None
+
+
+def make_models(models=None, **names):
+    """A C Models (pool_models) from names, as a scenario's "models" object gives them:
+    make_models({"cushion": "mathavan2010"}) or make_models(cushion="mathavan2010",
+    squirt="endmass"); kinds not given keep the defaults ("petit", "constant", "none"). A Models
+    is copied. Unknown kinds or names raise PoolError (POOL_ERR_INVALID_ARGUMENT) naming the field,
+    e.g. 'models.cushion: unknown model "foo" (petit, mathavan2010)'."""
+    if isinstance(models, Models):
+        out = Models.from_buffer_copy(models)
+        if not names:
+            return out
+        models = {}
+    elif models is None:
+        out, models = Models(), {}
+    elif isinstance(models, dict):
+        out = Models()
+    else:
+        raise TypeError(f"models: expected a dict of names or a Models, got "
+                        f"{type(models).__name__}")
+    for kind, name in list(models.items()) + list(names.items()):
+        if kind not in _MODEL_FUNCTIONS:
+            raise PoolError(_ERR_INVALID_ARGUMENT,
+                            f"models.{kind}: unknown field ({', '.join(MODEL_KINDS)})")
+        value = _model_value(kind, name)
+        if value is None:
+            raise PoolError(_ERR_INVALID_ARGUMENT,
+                            f'models.{kind}: unknown model "{name}" '
+                            f"({', '.join(model_names(kind))})")
+        setattr(out, kind, value)
+    return out
+
+
+def models_dict(models):
+    """A Models as names: {"cushion": "petit", "ball_ball_friction": "constant", "squirt": "none"}
+    (None for a value the library has no name for)."""
+    return {kind: _name(_MODEL_FUNCTIONS[kind][0], getattr(models, kind)) for kind in MODEL_KINDS}
+
+
 # ---- quartic ----------------------------------------------------------------------------------
 
 def quartic_real_roots(coeffs):
@@ -273,7 +351,7 @@ def _five(coeffs):
 
 # ---- the simulation ---------------------------------------------------------------------------
 
-def _sim_def(table, params, max_time, max_events, airborne):
+def _sim_def(table, params, max_time, max_events, airborne, models=None):
     d = default_sim_def()
     if table is not None:
         d.table = _table_preset(table, "table") if isinstance(table, str) else table
@@ -284,6 +362,8 @@ def _sim_def(table, params, max_time, max_events, airborne):
     if max_events is not None:
         d.max_events = _int32(max_events, "options.max_events")
     d.airborne = bool(airborne)
+    if models is not None:
+        d.models = make_models(models)
     return d
 
 
@@ -292,7 +372,11 @@ class Sim:
     call close(); reset() starts a new shot reusing every buffer (the candidate-shot loop).
 
     table: a preset name ("wpa-9ft"...) or a TableDef; params: a Params (default_params());
-    max_time in s, max_events; airborne is rejected by the library for now.
+    max_time in s, max_events; airborne is rejected by the library for now; models: the
+    optional models (PHYSICS.md "Optional models") as a dict of names, e.g. {"cushion":
+    "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "endmass"} (kinds not given keep
+    the defaults), or a Models (make_models). Their parameters (throw_a, throw_b, throw_c,
+    cue_end_mass) are in params.
 
     Threads: each method holds the Sim's lock (Sim.lock, reentrant) while it uses the C
     simulation, so calls from several threads run one after the other (a long run() makes the
@@ -301,11 +385,12 @@ class Sim:
     PoolError (POOL_ERR_STATE, "sim: closed"). What the methods return is copied out of the
     simulation before the lock is released."""
 
-    def __init__(self, table=None, params=None, max_time=None, max_events=None, airborne=False):
+    def __init__(self, table=None, params=None, max_time=None, max_events=None, airborne=False,
+                 models=None):
         # Before anything that can raise, so close() and __del__ work on a half-made Sim.
         self._sim = None
         self._lock = threading.RLock()
-        self._def = _sim_def(table, params, max_time, max_events, airborne)
+        self._def = _sim_def(table, params, max_time, max_events, airborne, models)
         lib = _lib()
         # Kept so __del__ can still free the simulation at interpreter shutdown, when the module's
         # globals may already be gone.
@@ -384,6 +469,7 @@ class Sim:
             d = SimDef()
             d.table, d.params, d.airborne = src.table, src.params, src.airborne
             d.max_time, d.max_events = src.max_time, src.max_events
+            d.models = src.models
         return d
 
     @property
@@ -394,14 +480,22 @@ class Sim:
     def params(self):
         return self.definition.params
 
-    def reset(self, table=None, params=None, max_time=None, max_events=None, airborne=None):
+    @property
+    def models(self):
+        """The models in use, by name: {"cushion": "petit", "ball_ball_friction": "constant",
+        "squirt": "none"} unless chosen otherwise."""
+        return models_dict(self.definition.models)
+
+    def reset(self, table=None, params=None, max_time=None, max_events=None, airborne=None,
+              models=None):
         """Removes every ball and event (a new shot), keeping memory. With arguments, changes the
-        definition too (others keep their current values)."""
+        definition too (others keep their current values; models replaces the models as a whole,
+        so reset(models={}) goes back to the defaults)."""
         with self._lock:
             p = self._p()
             err = CError()
             if table is None and params is None and max_time is None and max_events is None \
-                    and airborne is None:
+                    and airborne is None and models is None:
                 _check(_lib().pool_sim_reset(p, None, byref(err)), err)
                 return
             cur = self._def
@@ -409,7 +503,8 @@ class Sim:
                          params if params is not None else cur.params,
                          max_time if max_time is not None else cur.max_time,
                          max_events if max_events is not None else cur.max_events,
-                         airborne if airborne is not None else cur.airborne)
+                         airborne if airborne is not None else cur.airborne,
+                         models if models is not None else cur.models)
             _check(_lib().pool_sim_reset(p, byref(d), byref(err)), err)
             self._def = d
 

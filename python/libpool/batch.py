@@ -21,7 +21,7 @@ from ctypes import PyDLL, byref, c_double, c_int, c_int32, c_void_p, string_at
 
 import numpy as np
 
-from . import PoolError, _ffi
+from . import MODEL_KINDS, PoolError, _ffi, _model_value, model_names
 from ._ffi import BallState as CBallState, Error as CError, SimDef, Strike
 
 __all__ = ["run", "BatchResult", "load_layout", "Layout", "STOP_ERROR", "STOP_NAMES",
@@ -137,7 +137,7 @@ def _lib_message(path, code, err):
     message = err.message.decode("utf-8", "replace") if err.message else ""
     if not message:
         message = _ffi.load().pool_result_str(code).decode()
-    for root in (path, "table", "params", "balls", "strike", "options"):
+    for root in (path, "table", "params", "balls", "strike", "options", "models"):
         if message.startswith(root) and message[len(root):len(root) + 1] in (".", ":", "["):
             return message
     return f"{path}: {message}"
@@ -189,7 +189,7 @@ def _parse_document(doc):
     if not isinstance(doc, dict):
         _fail("(document): must be a JSON object")
     _fields(doc, "", ("format", "name", "description", "table", "params", "balls", "strike",
-                      "options"))
+                      "options", "models"))
     if "format" not in doc:
         _fail(f'format: missing (expected "{_FORMAT}")')
     if doc["format"] != _FORMAT:
@@ -247,6 +247,21 @@ def _parse_document(doc):
                 _fail("options.max_time: must be > 0")
         if "max_events" in o:
             d.max_events = _integer(o["max_events"], "options.max_events", 1, 2 ** 31 - 1)
+    # models: each kind by a name the library knows (the parser's parse_models)
+    m = doc.get("models")
+    if m is not None:
+        if not isinstance(m, dict):
+            _fail("models: must be an object")
+        _fields(m, "models", MODEL_KINDS)
+        for kind in MODEL_KINDS:
+            if kind not in m:
+                continue
+            if not isinstance(m[kind], str):
+                _fail(f"models.{kind}: must be a string")
+            value = _model_value(kind, m[kind])
+            if value is None:
+                _fail(f'models.{kind}: unknown model "{m[kind]}" ({", ".join(model_names(kind))})')
+            setattr(d.models, kind, value)
     # balls
     if "balls" not in doc:
         _fail("balls: missing")

@@ -1,6 +1,7 @@
 // The libpool-result/1 writer (INTERFACES.md): events with the after-states of their balls,
 // every ball at the end, statistics, and optionally the trajectories sampled for plots.
 #include "json_writer.h"
+#include "models_json.h"
 #include "scenario.h"
 
 #include <math.h>
@@ -253,6 +254,8 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 		pool_jw_end(&w, '}');
 		pool_jw_key(&w, "ball_radius");
 		pool_jw_number(&w, options->def->params.ball_radius);
+		if (!pool_models_are_default(&options->def->models))
+			pool_jw_models(&w, &options->def->models);
 	}
 	write_events(&w, sim, events, count);
 	pool_jw_key(&w, "final");

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "models_json.h"
 #include "read_input.h"
 #include "text_escape.h"
 
@@ -46,7 +47,8 @@ static bool starts_with_path(const char *message, const char *path) {
 }
 
 static int fail_lib(parse_ctx *ctx, const char *path, pool_result code, const pool_error *e) {
-	static const char *const roots[] = {"table", "params", "balls", "strike", "options", NULL};
+	static const char *const roots[] = {"table", "params", "balls", "strike", "options", "models",
+	                                    NULL};
 	const char *message = e->message[0] ? e->message : pool_result_str(code);
 	if (starts_with_path(message, path))
 		return fail(ctx, "%s", message);
@@ -190,6 +192,10 @@ static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
 		{"ball_radius", &p->ball_radius},
 		{"ball_mass", &p->ball_mass},
 		{"cue_mass", &p->cue_mass},
+		{"throw_a", &p->throw_a},
+		{"throw_b", &p->throw_b},
+		{"throw_c", &p->throw_c},
+		{"cue_end_mass", &p->cue_end_mass},
 	};
 	size_t n = sizeof names / sizeof names[0];
 	const char *key;
@@ -244,6 +250,32 @@ static int parse_options(parse_ctx *ctx, json_t *options, pool_sim_def *def) {
 		if (get_int(ctx, v, "options.max_events", 1, INT32_MAX, &n))
 			return -1;
 		def->max_events = (int)n;
+	}
+	return 0;
+}
+
+// "models" (PHYSICS.md "Optional models"): each key a kind, each value a model name the library
+// knows (models_json.c).
+static int parse_models(parse_ctx *ctx, json_t *models, pool_models *out) {
+	if (!models)
+		return 0;
+	if (!json_is_object(models))
+		return fail(ctx, "models: must be an object");
+	if (check_fields(ctx, models, "models", pool_model_kinds))
+		return -1;
+	for (const char *const *kind = pool_model_kinds; *kind; ++kind) {
+		json_t *v = json_object_get(models, *kind);
+		if (!v)
+			continue;
+		if (!json_is_string(v))
+			return fail(ctx, "models.%s: must be a string", *kind);
+		// (jansson refuses a NUL inside a string, so the C string is the whole name.)
+		if (pool_models_set(out, *kind, json_string_value(v)) != 0) {
+			char shown[POOL_ESCAPE_SHORT], known[128];
+			pool_escape_text(shown, sizeof shown, json_string_value(v), json_string_length(v));
+			pool_model_names(*kind, known, sizeof known);
+			return fail(ctx, "models.%s: unknown model \"%s\" (%s)", *kind, shown, known);
+		}
 	}
 	return 0;
 }
@@ -515,7 +547,7 @@ static int check_with_sim(parse_ctx *ctx, const pool_scenario *s) {
 
 static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 	static const char *const fields[] = {"format", "name", "description", "table", "params",
-	                                     "balls", "strike", "options", NULL};
+	                                     "balls", "strike", "options", "models", NULL};
 	if (!json_is_object(root))
 		return fail(ctx, "(document): must be a JSON object");
 	if (check_fields(ctx, root, "", fields))
@@ -538,6 +570,8 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 	if (parse_params(ctx, json_object_get(root, "params"), &s->def.params))
 		return -1;
 	if (parse_options(ctx, json_object_get(root, "options"), &s->def))
+		return -1;
+	if (parse_models(ctx, json_object_get(root, "models"), &s->def.models))
 		return -1;
 
 	json_t *balls = json_object_get(root, "balls");

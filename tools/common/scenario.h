@@ -16,7 +16,7 @@ extern "C" {
 
 /// A parsed, validated scenario. Angles of the strike are already in radians.
 typedef struct pool_scenario {
-	pool_sim_def def;        ///< table, params, airborne, max_time, max_events
+	pool_sim_def def;        ///< table, params, airborne, max_time, max_events, models
 	int ball_count;          ///< number of balls
 	pool_ball_state *balls;  ///< owned; z = R where the file gave [x, y]
 	bool has_strike;         ///< whether a strike is applied at t = 0
@@ -55,7 +55,8 @@ pool_result pool_scenario_setup(const pool_scenario *scenario, pool_sim **sim, p
 typedef struct pool_result_options {
 	double sample_dt; ///< s; > 0 adds "samples": trajectories sampled every sample_dt
 	bool pretty;      ///< indent the JSON
-	const pool_sim_def *def; ///< optional; when set, "table" and "ball_radius" are written too
+	const pool_sim_def *def; ///< optional; when set, "table" and "ball_radius" are written too,
+	                         ///< and "models" when they are not the defaults (models_json.h)
 } pool_result_options;
 
 /// The libpool-result/1 document of a finished (or stopped) simulation, malloc'd, NUL-terminated;
