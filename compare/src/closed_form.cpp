@@ -245,10 +245,19 @@ bool cloth_impact(const pool_params &p, Vector3d *v, Vector3d *w) {
 	return slipping;
 }
 
+// The closed forms strike the ball by PHYSICS.md "Cue strike" alone: with squirt selected an
+// off-centre strike launches the ball elsewhere, so they do not apply (libpool's reference does,
+// with the scenario's models). The other optional models act only at cushions and between balls,
+// which a closed-form shot never meets.
+static bool squirt_changes_strike(const pool_scenario &sc) {
+	return sc.has_strike && sc.strike.a != 0.0 && sc.def.models.squirt != POOL_SQUIRT_NONE;
+}
+
 std::unique_ptr<Reference> make_airborne_closed_form_reference(const Scenario &scenario) {
 	const pool_scenario &sc = scenario.parsed;
 	const pool_params &p = sc.def.params;
-	if (sc.ball_count != 1 || !sc.def.airborne || !(p.mu_slide > 0.0) || !(p.mu_roll > 0.0) || !(p.g > 0.0))
+	if (sc.ball_count != 1 || !sc.def.airborne || !(p.mu_slide > 0.0) || !(p.mu_roll > 0.0) || !(p.g > 0.0) ||
+	    squirt_changes_strike(sc))
 		return nullptr;
 	const pool_ball_state &b = sc.balls[0];
 	Vector3d r0(b.pos.x, b.pos.y, b.pos.z), v0(b.vel.x, b.vel.y, b.vel.z), w0(b.omega.x, b.omega.y, b.omega.z);
@@ -312,7 +321,8 @@ void strike_velocities(const pool_params &p, const pool_strike &s, bool planar, 
 std::unique_ptr<Reference> make_closed_form_reference(const Scenario &scenario) {
 	const pool_scenario &sc = scenario.parsed;
 	const pool_params &p = sc.def.params;
-	if (sc.ball_count != 1 || sc.def.airborne || !(p.mu_slide > 0.0) || !(p.mu_roll > 0.0))
+	if (sc.ball_count != 1 || sc.def.airborne || !(p.mu_slide > 0.0) || !(p.mu_roll > 0.0) ||
+	    squirt_changes_strike(sc))
 		return nullptr;
 	const pool_ball_state &b = sc.balls[0];
 	const double R = p.ball_radius;

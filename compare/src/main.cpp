@@ -429,6 +429,15 @@ int main(int argc, char **argv) {
 		}
 		const bool many_balls = scenario->parsed.ball_count >= 3;
 		for (const Plugin &plugin : plugins) {
+			std::vector<std::string> unexpressed;
+			if (unsupported_models(*scenario, plugin, &unexpressed) && !unexpressed.empty()) {
+				std::string list;
+				for (const std::string &m : unexpressed)
+					list += (list.empty() ? "" : ", ") + m;
+				std::cerr << "pool-compare: warning: " << scenario->name << ": " << plugin.api->name
+				          << " cannot express " << list << " (it runs its own laws; its errors include the "
+				          << "difference: unsupported_models in results.json)\n";
+			}
 			std::vector<double> dts = o.dts;
 			if (plugin.api->event_driven)
 				dts.resize(1);

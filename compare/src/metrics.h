@@ -66,6 +66,11 @@ struct Record {
 	double landing_position_error = kNone; ///< m, max xy distance at the reference's landing instants
 	double bounce_height_error = kNone;   ///< m, max |z - z_ref| at the reference's apex instants
 	std::string reference_error;          ///< why there is no reference (reference "none")
+	/// The scenario's models the engine cannot express ("cushion=mathavan2010", ...; it ran with
+	/// its own laws instead, so the errors include the difference of the laws). models_known
+	/// false: the plugin does not say (no POOL_ENGINE_MODELS_ENTRY), written as null.
+	std::vector<std::string> unsupported_models;
+	bool models_known = false;
 
 	int spread_runs = 0;             ///< perturbed runs (0: not measured)
 	double spread_perturbation = kNone; ///< m, displacement of the lead ball in each run

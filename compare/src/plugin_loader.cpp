@@ -95,6 +95,8 @@ bool load_plugin(const std::string &request, const std::string &plugin_dir, Plug
 	plugin->requested = request;
 	plugin->path = path;
 	plugin->api = api;
+	plugin->unsupported_models =
+		reinterpret_cast<pool_engine_models_fn>(dlsym(handle, POOL_ENGINE_MODELS_ENTRY));
 	return true;
 }
 

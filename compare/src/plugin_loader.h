@@ -16,6 +16,8 @@ struct Plugin {
 	std::string requested; ///< what the user asked for (name or path)
 	std::string path;      ///< the module file
 	const pool_engine_api *api = nullptr; ///< the checked function table
+	/// The optional POOL_ENGINE_MODELS_ENTRY export; nullptr when the plugin has none.
+	pool_engine_models_fn unsupported_models = nullptr;
 };
 
 /// File a plugin name resolves to; a request containing '/' or ending in ".so" is a path.

@@ -75,7 +75,7 @@ public:
 };
 
 /// The closed form for the scenario, or nullptr when none applies (several balls, airborne
-/// mode, zero cloth friction, or a path that reaches a cushion).
+/// mode, zero cloth friction, a path that reaches a cushion, or squirt on an off-centre strike).
 std::unique_ptr<Reference> make_closed_form_reference(const Scenario &scenario);
 
 /// libpool's exact result (runs the simulation to rest or max_time). nullptr and *error on failure.

@@ -66,6 +66,11 @@ json_t *record_object(const Record &r) {
 	json_object_set_new(o, "landings_engine", json_integer(r.landings_engine));
 	json_object_set_new(o, "reference_error",
 	                    r.reference_error.empty() ? json_null() : json_string(r.reference_error.c_str()));
+	// The scenario's models the engine cannot express (null: the plugin does not say).
+	json_t *models = r.models_known ? json_array() : json_null();
+	for (const std::string &m : r.unsupported_models)
+		json_array_append_new(models, json_string(m.c_str()));
+	json_object_set_new(o, "unsupported_models", models);
 	return o;
 }
 
@@ -272,6 +277,11 @@ bool record_from_wire(const std::string &text, Record *out, std::string *error) 
 	r.error = get_string(o, "error");
 	r.outcome = get_string(o, "outcome");
 	r.reference_error = get_string(o, "reference_error");
+	json_t *models = json_object_get(o, "unsupported_models");
+	r.models_known = json_is_array(models);
+	for (size_t i = 0; i < json_array_size(models); ++i)
+		if (json_is_string(json_array_get(models, i)))
+			r.unsupported_models.push_back(json_string_value(json_array_get(models, i)));
 	r.event_driven = json_is_true(json_object_get(o, "event_driven"));
 	r.cushions_by_rail = json_is_true(json_object_get(o, "cushions_by_rail"));
 	struct {
@@ -553,6 +563,26 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 	for (const Record &r : records)
 		if (r.reference == "none" && std::find(missing.begin(), missing.end(), r.scenario) == missing.end())
 			missing.push_back(r.scenario);
+	// Models an engine ran without (its own laws instead): once per scenario and engine.
+	std::vector<std::string> unexpressed;
+	for (const Record &r : records) {
+		if (r.unsupported_models.empty())
+			continue;
+		std::string line = "- `" + r.scenario + "` / " + r.engine + ":";
+		for (const std::string &m : r.unsupported_models)
+			line += " `" + m + "`";
+		if (std::find(unexpressed.begin(), unexpressed.end(), line) == unexpressed.end())
+			unexpressed.push_back(line);
+	}
+	if (!unexpressed.empty()) {
+		out << "## Models an engine cannot express\n\nThese scenarios select models (PHYSICS.md "
+		       "\"Optional models\") that the engine does not have; it ran them with its own laws, so its "
+		       "errors there include the difference of the laws, not only its integration "
+		       "(`unsupported_models` in results.json):\n\n";
+		for (const std::string &line : unexpressed)
+			out << line << "\n";
+		out << "\n";
+	}
 	if (!missing.empty()) {
 		out << "## Scenarios without a reference\n\nThese ran on every engine but nothing is scored (no "
 		       "closed form applies and the libpool reference failed); their rows say `no reference`:\n\n";

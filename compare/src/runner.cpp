@@ -190,6 +190,27 @@ Record invalid(Record *rec, double t) {
 
 } // namespace
 
+bool unsupported_models(const Scenario &scenario, const Plugin &plugin, std::vector<std::string> *out) {
+	out->clear();
+	if (!plugin.unsupported_models)
+		return false;
+	char text[512] = {0};
+	const int n = plugin.unsupported_models(scenario.json.c_str(), text, sizeof text);
+	text[sizeof text - 1] = '\0';
+	if (n < 0) // the harness parsed the scenario already: a plugin that cannot is not saying
+		return false;
+	std::string list = text;
+	for (size_t start = 0; start < list.size();) {
+		size_t comma = list.find(',', start);
+		if (comma == std::string::npos)
+			comma = list.size();
+		if (comma > start)
+			out->push_back(list.substr(start, comma - start));
+		start = comma + 1;
+	}
+	return true;
+}
+
 Record blank_record(const Scenario &scenario, const Reference &ref, const Plugin &plugin, const RunSettings &settings) {
 	const pool_engine_api *api = plugin.api;
 	Record rec;
@@ -200,6 +221,7 @@ Record blank_record(const Scenario &scenario, const Reference &ref, const Plugin
 	rec.reference_error = ref.why_none();
 	rec.event_driven = api->event_driven != 0;
 	rec.dt = rec.event_driven ? kNone : settings.dt;
+	rec.models_known = unsupported_models(scenario, plugin, &rec.unsupported_models);
 	return rec;
 }
 

@@ -25,6 +25,10 @@ Record run_engine(const Scenario &scenario, const Reference &reference, const Pl
 Record blank_record(const Scenario &scenario, const Reference &reference, const Plugin &plugin,
                     const RunSettings &settings);
 
+/// The scenario's models the plugin cannot express ("cushion=mathavan2010", ...), from its
+/// optional POOL_ENGINE_MODELS_ENTRY export. False (and *out empty) when the plugin does not say.
+bool unsupported_models(const Scenario &scenario, const Plugin &plugin, std::vector<std::string> *out);
+
 /// Instants (s) at which the states are compared: 0, every reference event, and 30 ms after
 /// each collision; at most max_samples of them, all before end_time.
 std::vector<double> sample_times(const Reference &reference, int max_samples);

@@ -11,10 +11,18 @@ const pool_engine_api kApi = pool_plugin::make_api<pool_bullet::Engine>(
     "Bullet 3.24 double precision, btDiscreteDynamicsWorld, fixed dt, sequential impulse with "
     "split impulse; rolling and spin resistance as applied torques; cannot model: cushion hits "
     "without cloth friction, hops from cushion impulses, exact contact times (found after overlap, "
-    "landings too), line cushions for a flying ball (0.1 mm capsules in airborne mode)");
+    "landings too), line cushions for a flying ball (0.1 mm capsules in airborne mode), the "
+    "optional models (mathavan2010 cushions, alciatore throw, endmass squirt)");
 
 } // namespace
 
 extern "C" __attribute__((visibility("default"))) const pool_engine_api *pool_engine_plugin(void) {
 	return &kApi;
+}
+
+// The optional models (PHYSICS.md "Optional models") are not in this engine: a scenario that
+// selects one runs with the engine's own laws, and the harness records which it lacked.
+extern "C" __attribute__((visibility("default"))) int pool_engine_unsupported_models(
+	const char *scenario_json, char *out, size_t out_size) {
+	return pool_plugin::default_models_only(scenario_json, out, out_size);
 }

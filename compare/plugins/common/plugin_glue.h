@@ -114,6 +114,38 @@ template <class Engine> struct Glue {
 	static void destroy(void *engine) { delete static_cast<Engine *>(engine); }
 };
 
+/// The optional models query (POOL_ENGINE_MODELS_ENTRY) of an engine that has none of the optional
+/// models (PHYSICS.md "Optional models"), only its own approximation of the default laws: every
+/// kind the scenario selects away from its default is one it cannot express ("kind=name").
+inline int default_models_only(const char *json, char *out, size_t out_size) {
+	if (!json) {
+		set_error(out, out_size, "scenario_json: NULL");
+		return -1;
+	}
+	pool_scenario scenario{};
+	char message[512] = {0};
+	if (pool_scenario_parse(json, std::strlen(json), &scenario, message, sizeof message) != 0) {
+		set_error(out, out_size, message[0] ? message : "scenario: invalid");
+		pool_scenario_free(&scenario);
+		return -1;
+	}
+	const pool_models m = scenario.def.models;
+	pool_scenario_free(&scenario);
+	std::string list;
+	int count = 0;
+	auto add = [&](const char *kind, const char *name) {
+		list += std::string(count++ ? "," : "") + kind + "=" + (name ? name : "unknown");
+	};
+	if (m.cushion != POOL_CUSHION_PETIT)
+		add("cushion", pool_cushion_model_name(m.cushion));
+	if (m.ball_ball_friction != POOL_BALL_FRICTION_CONSTANT)
+		add("ball_ball_friction", pool_ball_friction_model_name(m.ball_ball_friction));
+	if (m.squirt != POOL_SQUIRT_NONE)
+		add("squirt", pool_squirt_model_name(m.squirt));
+	set_error(out, out_size, list.c_str());
+	return count;
+}
+
 /// The function table of a time-stepped engine plugin.
 template <class Engine> constexpr pool_engine_api make_api(const char *name, const char *description) {
 	return pool_engine_api{POOL_ENGINE_ABI_VERSION, name,          description,

@@ -173,7 +173,8 @@ static const pool_engine_api api = {
 	.abi_version = POOL_ENGINE_ABI_VERSION,
 	.name = "libpool",
 	.description = "libpool event-driven, exact closed-form motion between events (PHYSICS.md); "
-	               "rigid cushions, point contacts, no air drag, squirt or swerve; simultaneous contacts "
+	               "rigid cushions, point contacts, no air drag or swerve (squirt with models.squirt "
+	               "endmass); simultaneous contacts "
 	               "are resolved one after the other (pairwise, in a fixed order: one admissible outcome)",
 	.event_driven = 1,
 	.create = create,
@@ -188,4 +189,14 @@ static const pool_engine_api api = {
 
 __attribute__((visibility("default"))) const pool_engine_api *pool_engine_plugin(void) {
 	return &api;
+}
+
+// Every optional model is libpool's own: the scenario's "models" reach the simulation through
+// the shared parser (pool_scenario_setup), so none is missing.
+__attribute__((visibility("default"))) int pool_engine_unsupported_models(const char *scenario_json,
+                                                                          char *out, size_t out_size) {
+	(void)scenario_json;
+	if (out && out_size > 0)
+		out[0] = '\0';
+	return 0;
 }

@@ -13,10 +13,18 @@ const pool_engine_api kApi = pool_plugin::make_api<pool_ode::Engine>(
 	"Coulomb's cone for several contacts on a ball (friction box), libpool's closed-form rolling and "
 	"spin decelerations (torque limits), line cushions for a flying ball (capsules, 0.1 mm thin in "
 	"airborne mode; rounded jaws), "
-	"hits above v*dt ~ R + rc = 5.7 cm (tunnelling)");
+	"hits above v*dt ~ R + rc = 5.7 cm (tunnelling), "
+	"the optional models (mathavan2010 cushions, alciatore throw, endmass squirt)");
 
 } // namespace
 
 extern "C" __attribute__((visibility("default"))) const pool_engine_api *pool_engine_plugin(void) {
 	return &kApi;
+}
+
+// The optional models (PHYSICS.md "Optional models") are not in this engine: a scenario that
+// selects one runs with the engine's own laws, and the harness records which it lacked.
+extern "C" __attribute__((visibility("default"))) int pool_engine_unsupported_models(
+	const char *scenario_json, char *out, size_t out_size) {
+	return pool_plugin::default_models_only(scenario_json, out, out_size);
 }
