@@ -16,4 +16,5 @@ add_executable(pool-rack ${CMAKE_CURRENT_SOURCE_DIR}/pool_rack.c)
 target_link_libraries(pool-rack PRIVATE pool_scenario)
 
 install(TARGETS pool-sim pool-rack RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(PROGRAMS ${CMAKE_CURRENT_SOURCE_DIR}/pool-plot DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(PROGRAMS ${CMAKE_CURRENT_SOURCE_DIR}/pool-plot ${CMAKE_CURRENT_SOURCE_DIR}/pool-fidelity-plot
+        DESTINATION ${CMAKE_INSTALL_BINDIR})
