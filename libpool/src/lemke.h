@@ -1,0 +1,45 @@
+// Lexicographic Lemke: the linear complementarity problem of a LINK step (PHYSICS.md "LINK").
+//   find z >= 0 with w = M z + q >= 0 and z'w = 0,  M dense n x n, row-major.
+// Lemke's complementary pivoting with the covering vector e = (1, ..., 1) terminates on a
+// copositive-plus M (the friction LCP's is) when degenerate ratio tests are broken
+// lexicographically; it then either solves the LCP or ends on a secondary ray, which for a
+// copositive-plus M proves the LCP infeasible. No allocation: the caller passes a workspace of
+// pool_lemke_workspace_bytes(n).
+#ifndef POOL_LEMKE_H
+#define POOL_LEMKE_H
+
+#include <stddef.h>
+
+/// Relative complementarity residual above which a solve is reported as failed: the residual
+/// max_i max(-z_i, -w_i, min(z_i, w_i)) divided by (1 + max_i |q_i|) (PHYSICS.md: "check the
+/// complementarity residual of every solve").
+#define POOL_LEMKE_RESIDUAL_MAX 1e-10
+
+/// How a solve ended.
+typedef enum pool_lemke_status {
+	POOL_LEMKE_SOLVED = 0,     ///< z solves the LCP; residual <= POOL_LEMKE_RESIDUAL_MAX
+	POOL_LEMKE_RAY = 1,        ///< secondary ray: no solution (M not copositive-plus, or infeasible)
+	POOL_LEMKE_MAX_PIVOTS = 2, ///< pivot budget exhausted
+	POOL_LEMKE_RESIDUAL = 3,   ///< finished, but the residual check failed (ill-conditioned M)
+	POOL_LEMKE_BAD_INPUT = 4,  ///< n < 0, NULL arrays, non-finite M or q
+} pool_lemke_status;
+
+/// What a solve did.
+typedef struct pool_lemke_stats {
+	int pivots;      ///< complementary pivots taken (0 when the warm start was already a solution)
+	int warm;        ///< 1 when the warm-start basis solved the problem directly
+	double residual; ///< relative complementarity residual of the returned z
+} pool_lemke_stats;
+
+/// Bytes of workspace a problem of size n needs.
+size_t pool_lemke_workspace_bytes(int n);
+
+/// Solves the LCP (M, q) of size n into z[0..n). `basis` (optional, n ints) is a warm start on
+/// entry and the solution's complementary basis on exit: basis[i] = 1 when z_i is basic
+/// (may be > 0), 0 when w_i is; when the entry basis gives z >= 0, w >= 0 it is returned without
+/// pivoting (a LINK step's contacts rarely change between steps). max_pivots <= 0 means a
+/// default of 50 n + 100. Deterministic: the same input gives the same z, bit for bit.
+pool_lemke_status pool_lemke_solve(int n, const double *M, const double *q, double *z, int *basis, int max_pivots,
+                                   void *workspace, pool_lemke_stats *stats);
+
+#endif
