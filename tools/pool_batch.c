@@ -22,6 +22,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "batch_shot.h"
 #include "cli.h"
 #include "json_writer.h"
 #include "read_input.h"
@@ -30,10 +31,6 @@
 #include "text_escape.h"
 
 #define PROGRAM "pool-batch"
-#define BATCH_PI 3.14159265358979323846
-// Degrees to radians exactly as the scenario parser converts strike.phi and strike.theta, so a
-// row and pool-sim on the same strike simulate the same doubles.
-#define BATCH_DEG (BATCH_PI / 180.0)
 // The scenario parser's limit on numbers (nothing on a table is 1e9 m, m/s or degrees).
 #define BATCH_MAX_ABS 1e9
 #define BATCH_MAX_SHOTS 100000000L
@@ -635,28 +632,6 @@ static void put_pos(sbuf *r, const batch *b, int k, const pool_vec3 *pos) {
 	sb_num(r, pos->z);
 }
 
-/// The id of the first ball the struck ball hits (ball_ball or link_begin), or false.
-static bool first_hit(const pool_sim *sim, int32_t ball, int32_t *hit) {
-	int count = 0;
-	const pool_event *events = pool_sim_events(sim, &count);
-	for (int k = 0; k < count; ++k) {
-		if (events[k].type != POOL_EVENT_BALL_BALL && events[k].type != POOL_EVENT_LINK_BEGIN)
-			continue;
-		const pool_ball_state *after = pool_sim_event_states(sim, &events[k]);
-		bool involved = false;
-		for (int j = 0; j < events[k].ball_count; ++j)
-			involved = involved || after[j].id == ball;
-		if (!involved)
-			continue;
-		for (int j = 0; j < events[k].ball_count; ++j)
-			if (after[j].id != ball) {
-				*hit = after[j].id;
-				return true;
-			}
-	}
-	return false;
-}
-
 /// Simulates shot i and returns its row (malloc'd; NULL when out of memory).
 static char *run_shot(worker *w, long i, bool *internal) {
 	const batch *b = w->b;
@@ -664,33 +639,8 @@ static char *run_shot(worker *w, long i, bool *internal) {
 	batch_strike s;
 	shot_strike(b, i, &s);
 	char error[400] = "";
-	*internal = false;
-	if (!(s.v[P_THETA] >= 0.0 && s.v[P_THETA] < 90.0)) {
-		snprintf(error, sizeof error, "strike.theta: must be in [0, 90) degrees"); // as the parser says
-	} else {
-		pool_scenario shot = *layout; // shares the layout's balls, read only
-		shot.has_strike = true;
-		shot.strike_ball = s.ball;
-		shot.strike = (pool_strike){.speed = s.v[P_SPEED], .phi = s.v[P_PHI] * BATCH_DEG,
-		                            .theta = s.v[P_THETA] * BATCH_DEG, .a = s.v[P_A], .b = s.v[P_B]};
-		pool_error e = {{0}};
-		pool_result r = pool_scenario_setup(&shot, &w->sim, &e);
-		if (r != POOL_OK) {
-			const char *message = e.message[0] ? e.message : pool_result_str(r);
-			snprintf(error, sizeof error, "%s%s", strncmp(message, "strike", 6) == 0 ? "" : "strike: ",
-			         message);
-			*internal = pool_cli_result_status(r) == POOL_EXIT_INTERNAL;
-		} else {
-			r = pool_sim_run(w->sim);
-			if (r == POOL_OK && layout->ball_count > 0)
-				r = pool_sim_state_at(w->sim, pool_sim_end_time(w->sim), w->final);
-			if (r != POOL_OK) {
-				snprintf(error, sizeof error, "simulation failed at t = %.17g s: %s", pool_sim_time(w->sim),
-				         pool_result_str(r));
-				*internal = true;
-			}
-		}
-	}
+	pool_batch_strike strike = {s.ball, s.v[P_SPEED], s.v[P_PHI], s.v[P_THETA], s.v[P_A], s.v[P_B]};
+	(void)pool_batch_shoot(layout, &strike, &w->sim, w->final, error, sizeof error, internal);
 
 	int n = layout->ball_count;
 	int events = 0;
@@ -698,7 +648,7 @@ static char *run_shot(worker *w, long i, bool *internal) {
 	bool has_hit = false;
 	if (!error[0]) {
 		pool_sim_events(w->sim, &events);
-		has_hit = first_hit(w->sim, s.ball, &hit);
+		has_hit = pool_batch_first_hit(w->sim, s.ball, &hit);
 	}
 	const char *stop = error[0] ? "error" : pool_stop_reason_name(pool_sim_stop_reason(w->sim));
 	bool json = b->o->format == FORMAT_JSONL;
@@ -1097,43 +1047,14 @@ int main(int argc, char **argv) {
 		return status;
 	}
 
-	// What pool_scenario_load_file_limit does, keeping the text to read the strike's angles in
-	// the file's degrees (the parsed scenario has them in radians).
 	pool_scenario layout;
+	double layout_degrees[2]; // strike.phi, strike.theta as written
 	char err[512];
-	char *layout_text = NULL;
-	size_t layout_length = 0;
-	if (pool_read_input(o.layout_path, o.max_input, &layout_text, &layout_length, err, sizeof err) != 0 ||
-	    pool_scenario_parse(layout_text, layout_length, &layout, err, sizeof err) != 0) {
+	status = pool_batch_load_layout(o.layout_path, o.max_input, &layout, layout_degrees, err, sizeof err);
+	if (status) {
 		fprintf(stderr, "%s: %s\n", PROGRAM, err);
-		free(layout_text);
 		free(b);
-		return POOL_EXIT_BAD_INPUT;
-	}
-	double layout_degrees[2] = {0.0, 0.0}; // strike.phi, strike.theta as written
-	if (layout.has_strike) {
-		json_t *root = json_loadb(layout_text, layout_length, 0, NULL);
-		json_t *strike = json_object_get(root, "strike");
-		json_t *phi = json_object_get(strike, "phi"), *theta = json_object_get(strike, "theta");
-		layout_degrees[0] = phi ? json_number_value(phi) : 0.0;
-		layout_degrees[1] = theta ? json_number_value(theta) : 0.0;
-		json_decref(root);
-	}
-	free(layout_text);
-	// The layout alone must set up (the parser already checked it; this is the library's word).
-	{
-		pool_scenario balls_only = layout;
-		balls_only.has_strike = false;
-		pool_sim *sim = NULL;
-		pool_error e = {{0}};
-		pool_result r = pool_scenario_setup(&balls_only, &sim, &e);
-		pool_sim_destroy(sim);
-		if (r != POOL_OK) {
-			fprintf(stderr, "%s: %s\n", PROGRAM, e.message[0] ? e.message : pool_result_str(r));
-			pool_scenario_free(&layout);
-			free(b);
-			return pool_cli_result_status(r);
-		}
+		return status;
 	}
 
 	strike_base base = {0};

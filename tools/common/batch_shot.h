@@ -1,0 +1,54 @@
+// One shot of a batch: a layout, a strike given in the file's degrees, simulated on a reused
+// simulation to its final states, with pool-batch's messages for strikes the library refuses.
+// Shared by pool-batch and pool-sensitivity, so a sensitivity sample and the pool-batch row of
+// the same strike are the same shot, bit for bit.
+#ifndef POOL_TOOLS_BATCH_SHOT_H
+#define POOL_TOOLS_BATCH_SHOT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "pool/pool.h"
+#include "scenario.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define POOL_BATCH_PI 3.14159265358979323846
+/// Degrees to radians exactly as the scenario parser converts strike.phi and strike.theta.
+#define POOL_BATCH_DEG (POOL_BATCH_PI / 180.0)
+
+/// A strike as the user writes it: angles in degrees.
+typedef struct pool_batch_strike {
+	int32_t ball;
+	double speed; ///< m/s
+	double phi;   ///< degrees
+	double theta; ///< degrees
+	double a, b;  ///< m
+} pool_batch_strike;
+
+/// What pool-batch does with a layout file: reads it (at most max_input bytes), parses it and
+/// keeps the strike's phi and theta as written in degrees (the parsed scenario holds radians;
+/// 0 when the file has no strike), then checks that the balls alone set up in the library.
+/// Returns 0; or POOL_EXIT_BAD_INPUT / POOL_EXIT_INTERNAL (cli.h) with the message in err, the
+/// scenario empty.
+int pool_batch_load_layout(const char *path, size_t max_input, pool_scenario *layout,
+                           double degrees[2], char *err, size_t err_size);
+
+/// Simulates strike s on layout (whose balls are shared, read only) in *sim (created when NULL,
+/// else reset), and writes the final states (layout->ball_count of them) to final. Returns true
+/// when the shot ran; false with pool-batch's message in error when the library refused the
+/// strike (*internal false) or failed (out of memory, an internal error: *internal true).
+bool pool_batch_shoot(const pool_scenario *layout, const pool_batch_strike *s, pool_sim **sim,
+                      pool_ball_state *final, char *error, size_t error_size, bool *internal);
+
+/// The id of the first ball the struck ball hits (ball_ball or link_begin), or false.
+bool pool_batch_first_hit(const pool_sim *sim, int32_t ball, int32_t *hit);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

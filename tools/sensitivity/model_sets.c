@@ -1,0 +1,80 @@
+// Named model sets for --models: the scenario's definition with some laws switched, so the
+// same noise can be run under two sets and the clouds compared.
+//
+// POOL_SENS_HAVE_MODELS is defined by tools/sensitivity.cmake when the library's pool_sim_def
+// has `models` (issue 12); without it only "default" and "spin-blind" exist.
+#include <stdio.h>
+#include <string.h>
+
+#include "study.h"
+
+const char *sens_model_set_names(void) {
+#ifdef POOL_SENS_HAVE_MODELS
+	return "default, spin-blind, mathavan2010, alciatore, endmass, petit, constant, none";
+#else
+	return "default, spin-blind";
+#endif
+}
+
+/// Applies one '+'-separated component to def; false when the name is unknown.
+static bool apply_component(const char *name, pool_sim_def *def) {
+	if (strcmp(name, "spin-blind") == 0) {
+		// FastFiz's limitation measured in the 2012 work: collisions that ignore spin, i.e. no
+		// tangential friction at ball-ball and ball-cushion contacts.
+		def->params.mu_ball = 0.0;
+		def->params.mu_cushion = 0.0;
+		return true;
+	}
+#ifdef POOL_SENS_HAVE_MODELS
+	int m = pool_cushion_model_from_name(name);
+	if (m >= 0) {
+		def->models.cushion = (pool_cushion_model)m;
+		return true;
+	}
+	m = pool_ball_friction_model_from_name(name);
+	if (m >= 0) {
+		def->models.ball_ball_friction = (pool_ball_friction_model)m;
+		return true;
+	}
+	m = pool_squirt_model_from_name(name);
+	if (m >= 0) {
+		def->models.squirt = (pool_squirt_model)m;
+		return true;
+	}
+#endif
+	return false;
+}
+
+int sens_model_set_parse(const char *name, const pool_sim_def *base, sens_model_set *out,
+                         char *err, size_t err_size) {
+	memset(out, 0, sizeof *out);
+	out->def = *base;
+	if (!name[0]) {
+		snprintf(err, err_size, "--models: empty model set name (%s)", sens_model_set_names());
+		return -1;
+	}
+	if (strlen(name) >= sizeof out->name) {
+		snprintf(err, err_size, "--models: model set name longer than %zu bytes", sizeof out->name - 1);
+		return -1;
+	}
+	snprintf(out->name, sizeof out->name, "%s", name);
+	if (strcmp(name, "default") == 0)
+		return 0;
+	char copy[sizeof out->name];
+	snprintf(copy, sizeof copy, "%s", name);
+	for (char *part = copy;;) {
+		char *plus = strchr(part, '+');
+		if (plus)
+			*plus = '\0';
+		if (!apply_component(part, &out->def)) {
+			snprintf(err, err_size, "--models: '%.60s': unknown model set%s (%s, joined with '+')", part,
+			         strcmp(part, "default") == 0 ? " part (default stands alone)" : "",
+			         sens_model_set_names());
+			return -1;
+		}
+		if (!plus)
+			break;
+		part = plus + 1;
+	}
+	return 0;
+}
