@@ -77,6 +77,33 @@ class FidelityPlot(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(sorted(os.listdir(only)), sorted(f"{n}.png" for n in FIGURES))
 
+    def test_block_form_and_the_trees_file(self):
+        """The block form of the published file (the one the models' own tests read) is drawn
+        too, and tests/data/published_fidelity.json (the default) is readable."""
+        blocks = {"cushion": {"source": "Mathavan 2010",
+                              "rows": [{"spin": "rolling", "speed": 1.0, "incidence_deg": 0.0,
+                                        "speed_ratio": 0.91},
+                                       {"spin": "rolling", "speed": 1.0, "incidence_deg": 45.0,
+                                        "rebound_from_rail_deg": 52.7}],
+                              "measured": {"speed_ratio_min": 0.9, "speed_ratio_max": 0.95,
+                                           "speed_min": 0.5, "speed_max": 2.0}},
+                  "throw": {"source": "Alciatore TP A.14",
+                            "rows": [{"cue": "stun", "cut_deg": 30.0, "speed": v, "throw_deg": t}
+                                     for v, t in ((0.447, 4.7), (1.341, 3.6), (3.129, 1.7))]}}
+        for name, args in (("blocks", ["--published", write_json("blocks.json", blocks)]),
+                           ("default", [])):
+            with self.subTest(name):
+                out = os.path.join(ARGS.work, "figures_" + name)
+                shutil.rmtree(out, ignore_errors=True)
+                r = run([out, "--libpool", ARGS.libpool, "--format", "png", *args])
+                self.assertEqual(r.returncode, 0, r.stderr)
+                self.assertEqual(sorted(os.listdir(out)), sorted(f"{n}.png" for n in FIGURES))
+        bad = dict(blocks, throw={"rows": [{"cue": "stun", "cut_deg": 30.0, "speed": "fast",
+                                            "throw_deg": 1.0}]})
+        r = run([os.path.join(ARGS.work, "x"), "--published", write_json("bad_blocks.json", bad)])
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("throw.rows[0].speed: must be a finite number", r.stderr)
+
     def test_help(self):
         r = run(["--help"])
         self.assertEqual(r.returncode, 0, r.stderr)
