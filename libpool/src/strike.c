@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "error.h"
+#include "models.h"
 #include "pool/ball.h"
 #include "vec3.h"
 
@@ -51,4 +52,27 @@ pool_result pool_strike_velocities(const pool_params *params, const pool_strike 
 	*vel = v;
 	*omega = w;
 	return pool_error_ok(error);
+}
+
+// Squirt (Alciatore TP A.31): the tip's contact with the ball lasts long enough for the ball's
+// side spin to push the cue's end sideways; only the shaft's end mass m_e takes part, so the
+// ball's launch turns away from the offset side by the angle of that sideways impulse.
+double pool_squirt_angle(const pool_params *params, double a) {
+	const double x = a / params->ball_radius, rest = 1.0 - x * x;
+	if (!(rest > 0.0))
+		return 0.0; // outside the ball: no strike
+	return atan(2.5 * x * sqrt(rest) / (1.0 + params->ball_mass / params->cue_end_mass + 2.5 * rest));
+}
+
+pool_result pool_strike_velocities_modelled(const pool_params *params, pool_squirt_model squirt,
+                                            const pool_strike *strike, pool_vec3 *vel, pool_vec3 *omega,
+                                            pool_error *error) {
+	pool_result r = pool_strike_velocities(params, strike, vel, omega, error);
+	if (r || squirt != POOL_SQUIRT_ENDMASS)
+		return r;
+	const double alpha = pool_squirt_angle(params, strike->a), c = cos(alpha), s = sin(alpha);
+	const pool_vec3 v = *vel;
+	vel->x = c * v.x - s * v.y;
+	vel->y = s * v.x + c * v.y;
+	return POOL_OK;
 }

@@ -318,7 +318,7 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 	if (i < 0)
 		return pool_error_set(error, POOL_ERR_UNKNOWN_BALL, "strike.ball: no ball has id %d", (int)ball_id);
 	pool_vec3 v, w;
-	pool_result r = pool_strike_velocities(&sim->def.params, strike, &v, &w, error);
+	pool_result r = pool_strike_velocities_modelled(&sim->def.params, sim->def.models.squirt, strike, &v, &w, error);
 	if (r)
 		return r;
 	const double now = isfinite(sim->processed) ? fmax(sim->processed, sim->time) : sim->time;
