@@ -7,7 +7,7 @@
 // Exit status: 0 success, 2 bad input or usage (the message names the option or field), 1
 // internal failure (out of memory, an output that cannot be written, a sample the library
 // failed to simulate).
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 // realpath
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -302,6 +302,16 @@ static int write_file(const char *prefix, const char *suffix, char *text) {
 	return status;
 }
 
+/// Whether PREFIX + suffix names the scenario file itself (then writing would destroy the input).
+static bool overwrites_scenario(const char *scenario, const char *prefix, const char *suffix) {
+	if (strcmp(scenario, "-") == 0)
+		return false;
+	char path[4096], a[4096], b[4096];
+	if (snprintf(path, sizeof path, "%s%s", prefix, suffix) >= (int)sizeof path)
+		return false;
+	return realpath(scenario, a) && realpath(path, b) && strcmp(a, b) == 0;
+}
+
 static int run_study(const sens_options *o, pool_scenario *layout, sens_study *s) {
 	int status = 0;
 	double degrees[2];
@@ -311,6 +321,11 @@ static int run_study(const sens_options *o, pool_scenario *layout, sens_study *s
 		fprintf(stderr, "%s: %s\n", PROGRAM, err);
 		return status;
 	}
+	static const char *const suffixes[] = {".json", ".csv", ".samples.csv", ".svg"};
+	for (size_t k = 0; o->prefix && k < sizeof suffixes / sizeof suffixes[0]; ++k)
+		if (overwrites_scenario(o->scenario_path, o->prefix, suffixes[k]))
+			return pool_cli_usage_error(PROGRAM, "-o: %s%s is the scenario itself (choose another PREFIX)",
+			                            pool_cli_arg(o->prefix), suffixes[k]);
 	s->scenario_path = o->scenario_path;
 	s->layout = layout;
 	s->seed = o->seed;
