@@ -108,7 +108,7 @@ typedef struct lemke {
 static size_t round16(size_t b) { return (b + 15u) & ~(size_t)15u; }
 
 static size_t doubles_for(size_t n) { return 3 * n * n + 7 * n + 2; }
-static size_t ints_for(size_t n) { return n * n + 6 * n + 4; }
+static size_t ints_for(size_t n) { return n * n + 7 * n + 4; }
 
 size_t pool_lemke_workspace_bytes(int n) {
 	if (n < 0 || n > LEMKE_N_MAX)
