@@ -68,14 +68,15 @@ static void friction(const double slip[2], const double dir[2], double M, double
 
 // One impulse step dP; mid_i / mid_c: the slips the sliding contacts are opposed along (NULL:
 // the slips at the start of the step).
-static void step(const contact_law *k, impact *b, double dP, const double *mid_i, const double *mid_c) {
+// nose_slip: the slip at the nose at the start of the step (the normal impulse leaves it as it is).
+static void step(const contact_law *k, impact *b, double dP, const double nose_slip[2], const double *mid_i,
+                 const double *mid_c) {
 	const double c = k->c, s = k->s, iM = k->inv_M, g = k->spin_gain;
-	double slip[2], f[2];
+	double slip[2] = {nose_slip[0], nose_slip[1]}, f[2];
 	// 1. normal impulse at the nose (no torque: along r_I)
 	b->vy -= c * dP * iM;
 	b->vz -= s * dP * iM;
 	// 2. friction at the nose
-	slip_at_nose(k, b, slip);
 	friction(slip, mid_i ? mid_i : slip, k->M, k->mu_i * dP, f);
 	b->vx += f[0] * iM;
 	b->vy -= f[1] * s * iM;
@@ -114,7 +115,7 @@ static void advance(const contact_law *k, const integration *from, integration *
 		mid_c[j] = from->has_prev ? 1.5 * now_c[j] - 0.5 * from->prev_c[j] : now_c[j];
 	}
 	*to = *from;
-	step(k, &to->b, dP, from->has_prev ? mid_i : NULL, from->has_prev ? mid_c : NULL);
+	step(k, &to->b, dP, now_i, from->has_prev ? mid_i : NULL, from->has_prev ? mid_c : NULL);
 	for (int j = 0; j < 2; ++j) {
 		to->prev_i[j] = now_i[j];
 		to->prev_c[j] = now_c[j];
