@@ -1,6 +1,7 @@
 // The optional models (issue 12, PHYSICS.md "Optional models") in the comparison harness:
 // scenarios with "models" load (bad ones refused naming the field); the libpool plugin simulates
-// the scenario's models (its run equals the libpool reference of the same scenario); the ODE and Bullet plugins say which models they cannot
+// the scenario's models (its run equals the libpool reference of the same scenario, and differs
+// from the default models' one); the ODE and Bullet plugins say which models they cannot
 // express, which every record carries as "unsupported_models" (null for a plugin that does not
 // say), through the child-process wire too; the closed forms step aside when squirt changes the
 // strike.
@@ -131,7 +132,7 @@ void engine_says_what_it_lacks(const Plugin &plugin) {
 }
 
 // The libpool plugin simulates the scenario's models: its run is the libpool reference of the
-// same scenario (errors zero).
+// same scenario (errors zero), and differs from the default models' reference.
 void libpool_runs_the_models(const Plugin &libpool) {
 	auto all = from_text("cut_models", cut_with(kAllModels));
 	if (!all)
@@ -147,6 +148,19 @@ void libpool_runs_the_models(const Plugin &libpool) {
 	CHECK(same.error.empty() && same.final_position_error == 0.0 && same.missed_collisions == 0 &&
 	          same.phantom_collisions == 0,
 	      "libpool with models vs its reference: %s, final error %g m", same.error.c_str(), same.final_position_error);
+	// And the models matter: against the default models' reference of the same shot the final
+	// positions differ by far more than rounding (~1e-15 m on a table; the models move balls by
+	// centimetres), so the plugin did not drop them on the way.
+	auto plain = from_text("cut", cut_with(""));
+	auto ref_plain = plain ? make_libpool_reference(*plain, &error) : nullptr;
+	CHECK(ref_plain != nullptr, "default reference: %s", error.c_str());
+	if (!ref_plain)
+		return;
+	const double kModelsMatter = 1e-6; // m
+	const Record other = run_engine(*all, *ref_plain, libpool, settings);
+	CHECK(other.error.empty() && other.final_position_error > kModelsMatter,
+	      "the models changed nothing: final error %g m against the default models", other.final_position_error);
+	std::printf("  libpool: models vs default models, final positions %.3g m apart\n", other.final_position_error);
 }
 
 // A plugin without the export: the record says nothing ("unsupported_models": null).

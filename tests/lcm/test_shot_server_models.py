@@ -1,7 +1,8 @@
 """The optional models (issue 12) travel in a shot request's scenario_json and reach the
 simulation in pool-shot-server: a request with "models" (and the model parameters) is answered
-with exactly pool-sim's result for the same scenario, whose result says which models made it; bad
-models are answered with error set, naming the field."""
+with exactly pool-sim's result for the same scenario, whose result says which models made it, and
+which differs from the default models' answer; bad models are answered with error set, naming the
+field."""
 import copy
 import json
 import os
@@ -68,6 +69,13 @@ for name, rid in ids.items():
     if rid in got:
         u.check(got[rid].error == "", "%s: error %r" % (name, got[rid].error))
         u.compare_result(u.shot_json(got[rid]), want[name], "request %d (%s)" % (rid, name))
+# The models changed the shot: the answers are not the default one's (so they were not dropped on
+# the way, which the equality with pool-sim alone would not show if pool-sim dropped them too).
+if all(rid in got for rid in ids.values()):
+    default_final = u.shot_json(got[ids["default"]])["final"]
+    for name in ("models", "cushion_only"):
+        u.check(u.shot_json(got[ids[name]])["final"] != default_final,
+                "%s: the same final states as the default models" % name)
 for rid, (_, message) in bad.items():
     if rid in got:
         s = got[rid]

@@ -138,6 +138,17 @@ class OnTheSim(unittest.TestCase):
                 self.assertEqual(want.get("models", DEFAULTS), dict(DEFAULTS, **models))
 
 
+class ModelsMatter(unittest.TestCase):
+    def test_each_model_changes_the_shot(self):
+        """Each kind, chosen alone, changes this shot's final positions (the cut with side goes
+        into cushions): the binding did not drop it on the way to the library."""
+        _, default = run_sim({})
+        for kind, name in ALL.items():
+            with self.subTest(kind=kind):
+                _, final = run_sim({kind: name})
+                self.assertNotEqual([b.pos for b in final], [b.pos for b in default])
+
+
 class BatchLayout(unittest.TestCase):
     """libpool.batch's parser (a Python re-implementation of pool-sim's) reads models alike."""
 
