@@ -17,7 +17,7 @@
 /// while the contacts slide and of first order across stick-slip transitions; at this count the
 /// rebound velocity is within 1e-3 of the impact speed of the step-converged one, and the
 /// rebound angle within 0.05 degrees, over incidences 0-80 degrees, stun to rolling, running and
-/// check side (test_models.c, MATHAVAN_CONVERGENCE). Cost: tools/bench_models (a few us).
+/// check side (test_model_fidelity.c, MATHAVAN_CONVERGENCE). Cost: tools/bench_models (a few us).
 #define POOL_MATHAVAN_STEPS 128
 
 /// What pool_cushion_mathavan did.
