@@ -36,3 +36,8 @@ fi
 if ! "$VENV/bin/python" -c "import lcm" 2>/dev/null; then
   "$VENV/bin/pip" install -q --disable-pip-version-check "lcm==1.5.3"
 fi
+# Dask for libpool.dask and its test (tests/python_dask), with a NumPy from PyPI: 1.x, because the
+# venv also sees Debian's matplotlib (--system-site-packages), built against NumPy 1.x.
+if ! "$VENV/bin/python" -c "import dask.distributed, numpy; assert numpy.__version__ == '1.26.4'" 2>/dev/null; then
+  "$VENV/bin/pip" install -q --disable-pip-version-check "numpy==1.26.4" "dask[distributed]==2026.8.0"
+fi
