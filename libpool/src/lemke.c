@@ -630,18 +630,21 @@ static double extract(lemke *L, double *z) {
 	for (int j = 0; j < n; ++j)
 		if (z[j] != 0.0)
 			nzi[nz++] = j;
-	double qmax = 0.0, res = 0.0;
+	double size = 0.0, res = 0.0;
 	for (int i = 0; i < n; ++i) {
 		const double *row = L->M + (size_t)i * (size_t)n;
-		double w = L->q[i];
-		for (int t = 0; t < nz; ++t)
-			w += row[nzi[t]] * z[nzi[t]];
+		double w = L->q[i], terms = fabs(L->q[i]);
+		for (int t = 0; t < nz; ++t) {
+			double e = row[nzi[t]] * z[nzi[t]];
+			w += e;
+			terms += fabs(e);
+		}
 		double r = -w > fmin(z[i], w) ? -w : fmin(z[i], w);
 		if (!(r <= res)) // NaN too
 			res = r == r ? r : INFINITY;
-		qmax = fabs(L->q[i]) > qmax ? fabs(L->q[i]) : qmax;
+		size = terms > size ? terms : size;
 	}
-	return res / (1.0 + qmax);
+	return res / (1.0 + size);
 }
 
 static void write_basis(const lemke *L, int *basis) {

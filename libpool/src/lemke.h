@@ -10,9 +10,11 @@
 
 #include <stddef.h>
 
-/// Relative complementarity residual above which a solve is reported as failed: the residual
-/// max_i max(-z_i, -w_i, min(z_i, w_i)) divided by (1 + max_i |q_i|) (PHYSICS.md: "check the
-/// complementarity residual of every solve").
+/// Relative complementarity residual above which a solve is reported as failed (PHYSICS.md:
+/// "check the complementarity residual of every solve"): with w = M z + q computed from M and q,
+/// max_i max(-w_i, min(z_i, w_i)) divided by 1 + max_i (|q_i| + sum_j |M_ij z_j|), the size of
+/// the terms w is summed from (so a large z is not held to a tighter standard than rounding
+/// allows). The returned z is >= 0 exactly (rounding below zero is clamped).
 #define POOL_LEMKE_RESIDUAL_MAX 1e-10
 
 /// How a solve ended.
@@ -31,14 +33,20 @@ typedef struct pool_lemke_stats {
 	double residual; ///< relative complementarity residual of the returned z
 } pool_lemke_stats;
 
-/// Bytes of workspace a problem of size n needs.
+/// Bytes of workspace a problem of size n needs: about 28 n^2 (18 MB at n = 800); 0 when n < 0
+/// or n > 20000.
 size_t pool_lemke_workspace_bytes(int n);
 
 /// Solves the LCP (M, q) of size n into z[0..n). `basis` (optional, n ints) is a warm start on
 /// entry and the solution's complementary basis on exit: basis[i] = 1 when z_i is basic
 /// (may be > 0), 0 when w_i is; when the entry basis gives z >= 0, w >= 0 it is returned without
-/// pivoting (a LINK step's contacts rarely change between steps). max_pivots <= 0 means a
-/// default of 50 n + 100. Deterministic: the same input gives the same z, bit for bit.
+/// pivoting (a LINK step's contacts rarely change between steps): the basis is solved directly
+/// and accepted when its z (rounding below zero clamped) passes the residual check, else Lemke
+/// runs from scratch. basis is written on POOL_LEMKE_SOLVED and POOL_LEMKE_RESIDUAL only. On any
+/// other status z holds the last iterate (not a solution). max_pivots <= 0 means a default of
+/// 50 n + 100. workspace: pool_lemke_workspace_bytes(n) bytes aligned for double (as malloc
+/// gives); its contents on entry do not matter. stats may be NULL. n = 0 is solved (nothing to
+/// do; the pointers are not read). Deterministic: the same input gives the same z, bit for bit.
 pool_lemke_status pool_lemke_solve(int n, const double *M, const double *q, double *z, int *basis, int max_pivots,
                                    void *workspace, pool_lemke_stats *stats);
 
