@@ -114,6 +114,27 @@ typedef const pool_engine_api *(*pool_engine_entry_fn)(void);
 /// The optional models query.
 typedef int (*pool_engine_models_fn)(const char *scenario_json, char *out, size_t out_size);
 
+/// Optional third export, looked up by name (added without changing the ABI version: a plugin
+/// without it says nothing, and its records have "link_cpu_share": null):
+///     int pool_engine_link_stats(void *engine, pool_engine_link_info *out);
+/// What the engine's persistent-contact steps (libpool's LINK, PHYSICS.md) cost in the run so
+/// far. The plugin times its own calls (the library has no clock): step_seconds is the time of
+/// every simulation step, link_seconds the part spent in steps that produced a link event.
+/// Returns 0, or -1 when it cannot say.
+#define POOL_ENGINE_LINK_ENTRY "pool_engine_link_stats"
+
+/// Persistent-contact counters of one run (POOL_ENGINE_LINK_ENTRY).
+typedef struct pool_engine_link_info {
+	double step_seconds;  ///< s, wall-clock time of every simulation step of the run
+	double link_seconds;  ///< s, the part of it in steps that produced a link event
+	int64_t link_steps;   ///< LCP solves (libpool: pool_link_stats.steps)
+	int64_t link_events;  ///< link_begin, link_step and link_end events
+	int64_t clusters;     ///< clusters formed (link_begin events)
+} pool_engine_link_info;
+
+/// The optional persistent-contact query.
+typedef int (*pool_engine_link_fn)(void *engine, pool_engine_link_info *out);
+
 #ifdef __cplusplus
 }
 #endif

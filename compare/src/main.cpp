@@ -31,7 +31,8 @@ namespace {
 const char kUsage[] =
     "usage: pool-compare [--scenario FILE ...] [--engines libpool,ode,bullet] [--dt 1e-3,1e-4]\n"
     "                    [--out DIR] [--lcm-url URL] [--plugin-dir DIR] [--spread N]\n"
-    "                    [--airborne] [--timeout S] [--in-process] [--python PATH] [--no-plots]\n"
+    "                    [--airborne] [--link] [--repeat N] [--timeout S] [--in-process]\n"
+    "                    [--python PATH] [--no-plots]\n"
     "                    [--quiet]\n"
     "                    [--help]\n"
     "\n"
@@ -52,6 +53,13 @@ const char kUsage[] =
     "                   motion until it implements it (its rows fail, exit status 1), and a\n"
     "                   scenario with neither closed form nor libpool reference says \"no\n"
     "                   reference\"\n"
+    "  --link           the persistent-contact (LINK) scenarios, compare/scenarios/link/*.json\n"
+    "                   (push, rest_on_two, slide_off, airborne_break), like --airborne; their\n"
+    "                   reference is libpool's result with LINK steps, which is not exact\n"
+    "                   (\"reference_exact\": false): the errors are the engines' disagreement;\n"
+    "                   libpool's rows say what share of its time went to link steps\n"
+    "  --repeat N       time every run at least N times (median and minimum reported; default 1,\n"
+    "                   short runs are repeated anyway until 0.2 s of CPU): a benchmark\n"
     "  --engines LIST   plugin names or paths to .so modules, comma-separated; a name loads\n"
     "                   <plugin dir>/libpool_engine_<name>.so (default: libpool,ode,bullet,\n"
     "                   those that are built)\n"
@@ -90,6 +98,8 @@ struct Options {
 	bool plots = true;
 	bool quiet = false;
 	bool airborne = false;
+	bool link = false;
+	int repeat = 1;
 };
 
 int usage_error(const std::string &message) {
@@ -226,6 +236,13 @@ int parse_args(int argc, char **argv, Options *o) {
 			o->timeout = t;
 		} else if (arg == "--airborne") {
 			o->airborne = true;
+		} else if (arg == "--link") {
+			o->link = true;
+		} else if (arg == "--repeat") {
+			double n;
+			if (!value(&v) || !parse_double(v, &n) || n < 1 || n > 10000 || n != static_cast<int>(n))
+				return usage_error("--repeat needs a whole number of timed runs in [1, 10000]");
+			o->repeat = static_cast<int>(n);
 		} else if (arg == "--in-process") {
 			o->in_process = true;
 		} else if (arg == "--python") {
@@ -362,6 +379,12 @@ int main(int argc, char **argv) {
 			return usage_error("--airborne: no scenario files in " POOL_COMPARE_DEFAULT_SCENARIO_DIR "/airborne");
 		o.scenarios.insert(o.scenarios.end(), air.begin(), air.end());
 	}
+	if (o.link) {
+		const std::vector<std::string> link = default_scenarios(POOL_COMPARE_DEFAULT_SCENARIO_DIR "/link");
+		if (link.empty())
+			return usage_error("--link: no scenario files in " POOL_COMPARE_DEFAULT_SCENARIO_DIR "/link");
+		o.scenarios.insert(o.scenarios.end(), link.begin(), link.end());
+	}
 	if (o.scenarios.empty()) {
 		o.scenarios = default_scenarios(POOL_COMPARE_DEFAULT_SCENARIO_DIR);
 		if (o.scenarios.empty())
@@ -444,6 +467,7 @@ int main(int argc, char **argv) {
 			for (double dt : dts) {
 				RunSettings settings;
 				settings.dt = dt;
+				settings.min_repetitions = o.repeat;
 				// The perturbed runs of the default sweep stop at 1e-4: at 1e-5 they would cost
 				// 8 x 14 s of CPU for the break alone.
 				const bool spread = plugin.api->event_driven || o.dts_given || dt >= 1e-4;
@@ -487,6 +511,9 @@ int main(int argc, char **argv) {
 	const std::string flights = landing_table(records, false);
 	if (!flights.empty())
 		std::cout << "\n" << flights;
+	const std::string links = link_table(records, false);
+	if (!links.empty())
+		std::cout << "\n" << links;
 	const std::vector<std::string> plots = o.plots ? draw_plots(o) : std::vector<std::string>();
 	if (!save(plots))
 		return 1;

@@ -78,6 +78,15 @@ struct Record {
 	double spread_max = kNone;       ///< m, largest final-position change
 
 	double consistency_error = kNone; ///< m, final positions against the same engine at its finest dt
+
+	// Persistent contact (LINK): only from plugins with the POOL_ENGINE_LINK_ENTRY export (null
+	// otherwise). A libpool reference that took LINK steps is not exact (first-order LCP steps
+	// inside the contact): its rows measure agreement between engines, not errors.
+	double link_cpu_share = kNone;  ///< share of the run's step time spent in link steps (median of the timed runs)
+	long long link_steps = -1;      ///< LCP solves of the measured run (-1: the plugin does not say)
+	long long link_events = -1;     ///< link_begin, link_step and link_end events
+	long long link_clusters = -1;   ///< clusters formed
+	int reference_exact = -1;       ///< 1 closed form or libpool without LINK steps, 0 libpool with them, -1 no reference
 	std::vector<BallSample> final_balls; ///< final states (not written; for consistency_error)
 
 	/// Simulated seconds per CPU second.

@@ -97,6 +97,7 @@ bool load_plugin(const std::string &request, const std::string &plugin_dir, Plug
 	plugin->api = api;
 	plugin->unsupported_models =
 		reinterpret_cast<pool_engine_models_fn>(dlsym(handle, POOL_ENGINE_MODELS_ENTRY));
+	plugin->link_stats = reinterpret_cast<pool_engine_link_fn>(dlsym(handle, POOL_ENGINE_LINK_ENTRY));
 	return true;
 }
 

@@ -18,6 +18,8 @@ struct Plugin {
 	const pool_engine_api *api = nullptr; ///< the checked function table
 	/// The optional POOL_ENGINE_MODELS_ENTRY export; nullptr when the plugin has none.
 	pool_engine_models_fn unsupported_models = nullptr;
+	/// The optional POOL_ENGINE_LINK_ENTRY export; nullptr when the plugin has none.
+	pool_engine_link_fn link_stats = nullptr;
 };
 
 /// File a plugin name resolves to; a request containing '/' or ending in ".so" is a path.

@@ -45,6 +45,7 @@ public:
 		int count = 0;
 		const pool_event *list = pool_sim_events(sim_, &count);
 		for (int i = 0; i < count && list[i].time <= max_time; ++i) {
+			exact_ = exact_ && list[i].type != POOL_EVENT_LINK_BEGIN;
 			const int type = abi_event_type(list[i].type);
 			if (type < 0)
 				continue;
@@ -71,6 +72,7 @@ public:
 	}
 
 	std::string kind() const override { return "libpool"; }
+	bool exact() const override { return exact_; }
 
 	std::vector<BallSample> state_at(double t) const override {
 		const int n = pool_sim_ball_count(sim_);
@@ -87,6 +89,7 @@ private:
 	static constexpr double kBeyondMaxTime = 1.0; ///< s, far more than any engine's step
 	pool_sim *sim_ = nullptr;
 	double known_until_ = 0.0; ///< s, states are exact up to here (infinite once at rest)
+	bool exact_ = true;        ///< no cluster formed before max_time (LINK steps are first order)
 };
 
 } // namespace

@@ -66,6 +66,10 @@ public:
 	virtual bool has_truth() const { return true; }
 	/// Why there is no ground truth ("" when there is).
 	virtual std::string why_none() const { return ""; }
+	/// False when the ground truth is itself approximate: libpool's result with LINK steps
+	/// (persistent contact advanced by first-order LCP steps, PHYSICS.md "LINK"), for which no
+	/// exact solution exists.
+	virtual bool exact() const { return has_truth(); }
 
 	std::vector<Event> events; ///< the ABI-visible events, in time order
 	std::vector<Landing> landings; ///< every landing on the cloth, in time order (airborne mode)

@@ -15,6 +15,8 @@ namespace {
 
 json_t *number_or_null(double x) { return std::isfinite(x) ? json_real(x) : json_null(); }
 
+json_t *count_or_null(long long n) { return n >= 0 ? json_integer(n) : json_null(); }
+
 json_t *record_object(const Record &r) {
 	json_t *o = json_object();
 	json_object_set_new(o, "scenario", json_string(r.scenario.c_str()));
@@ -71,12 +73,25 @@ json_t *record_object(const Record &r) {
 	for (const std::string &m : r.unsupported_models)
 		json_array_append_new(models, json_string(m.c_str()));
 	json_object_set_new(o, "unsupported_models", models);
+	// Persistent contact (LINK; null from plugins without the POOL_ENGINE_LINK_ENTRY export), and
+	// whether the reference is exact (false: libpool's result with LINK steps; null: no reference).
+	json_object_set_new(o, "link_cpu_share", number_or_null(r.link_cpu_share));
+	json_object_set_new(o, "link_steps", count_or_null(r.link_steps));
+	json_object_set_new(o, "link_events", count_or_null(r.link_events));
+	json_object_set_new(o, "link_clusters", count_or_null(r.link_clusters));
+	json_object_set_new(o, "reference_exact", r.reference_exact < 0 ? json_null() : json_boolean(r.reference_exact));
 	return o;
 }
 
 double get_number(json_t *o, const char *key) {
 	json_t *v = json_object_get(o, key);
 	return json_is_number(v) ? json_number_value(v) : kNone;
+}
+
+// An optional count: -1 when null or absent.
+long long get_count(json_t *o, const char *key) {
+	json_t *v = json_object_get(o, key);
+	return json_is_integer(v) ? static_cast<long long>(json_integer_value(v)) : -1;
 }
 
 long long get_integer(json_t *o, const char *key) {
@@ -309,7 +324,8 @@ bool record_from_wire(const std::string &text, Record *out, std::string *error) 
 	               {"wall_seconds", &Record::wall_seconds},
 	               {"landing_time_error", &Record::landing_time_error},
 	               {"landing_position_error", &Record::landing_position_error},
-	               {"bounce_height_error", &Record::bounce_height_error}};
+	               {"bounce_height_error", &Record::bounce_height_error},
+	               {"link_cpu_share", &Record::link_cpu_share}};
 	for (const auto &n : numbers)
 		r.*n.field = get_number(o, n.key);
 	struct {
@@ -330,6 +346,11 @@ bool record_from_wire(const std::string &text, Record *out, std::string *error) 
 	for (const auto &n : integers)
 		r.*n.field = static_cast<int>(get_integer(o, n.key));
 	r.steps = get_integer(o, "steps");
+	r.link_steps = get_count(o, "link_steps");
+	r.link_events = get_count(o, "link_events");
+	r.link_clusters = get_count(o, "link_clusters");
+	json_t *exact = json_object_get(o, "reference_exact");
+	r.reference_exact = json_is_boolean(exact) ? json_is_true(exact) : -1;
 	size_t i;
 	json_t *row;
 	json_array_foreach(json_object_get(o, "final_balls"), i, row) {
@@ -447,6 +468,59 @@ std::string landing_table(const std::vector<Record> &records, bool markdown) {
 	return render_table(head, rows, markdown, align, align);
 }
 
+namespace {
+
+bool is_link_scenario(const std::vector<Record> &records, const std::string &scenario) {
+	for (const Record &r : records)
+		if (r.scenario == scenario && (r.reference_exact == 0 || r.link_events > 0))
+			return true;
+	return false;
+}
+
+// The largest final-position distance to another time-stepped engine's run at the same step.
+double cross_engine_error(const std::vector<Record> &records, const Record &r) {
+	double worst = kNone;
+	if (r.event_driven || r.final_balls.empty())
+		return worst;
+	for (const Record &o : records)
+		if (o.scenario == r.scenario && o.engine != r.engine && !o.event_driven && o.dt == r.dt && o.error.empty() &&
+		    !o.final_balls.empty()) {
+			const double d = max_position_error(r.final_balls, o.final_balls);
+			worst = std::isnan(worst) ? d : std::max(worst, d);
+		}
+	return worst;
+}
+
+} // namespace
+
+std::string link_table(const std::vector<Record> &records, bool markdown) {
+	const std::vector<std::string> head = {"scenario", "engine", "dt (s)", "CPU median / min (ms)", "link share",
+	                                       "link steps (clusters)", "final pos vs libpool (m)",
+	                                       "vs other engine, same dt (m)", "max pen (m)"};
+	std::vector<std::vector<std::string>> rows;
+	for (const Record &r : records) {
+		if (!is_link_scenario(records, r.scenario))
+			continue;
+		const std::string dt = r.event_driven ? "event" : fmt(r.dt, "%.0e");
+		if (!r.error.empty() && !std::isfinite(r.cpu_seconds)) {
+			rows.push_back({r.scenario, r.engine, dt, "failed: " + r.error});
+			continue;
+		}
+		rows.push_back({r.scenario, r.engine, dt,
+		                fmt(1e3 * r.cpu_seconds, "%.3g") + " / " + fmt(1e3 * r.cpu_seconds_min, "%.3g"),
+		                std::isfinite(r.link_cpu_share) ? fmt(100.0 * r.link_cpu_share, "%.1f") + " %" : "-",
+		                r.link_steps >= 0 ? std::to_string(r.link_steps) + " (" + std::to_string(r.link_clusters) + ")"
+		                                  : "-",
+		                r.engine == "libpool" && r.event_driven ? "(reference)" : fmt(r.final_position_error, "%.2e"),
+		                fmt(cross_engine_error(records, r), "%.2e"), fmt(r.max_penetration, "%.2e")});
+	}
+	if (rows.empty())
+		return "";
+	std::string align(head.size(), 'r');
+	align[0] = align[1] = 'l';
+	return render_table(head, rows, markdown, align, align);
+}
+
 void fill_consistency(std::vector<Record> *records) {
 	for (Record &r : *records)
 		r.consistency_error = kNone; // recomputed: a finer step may have been added since
@@ -559,6 +633,18 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 		       "difference at the reference's apex instants (states at the step the engine reached). The "
 		       "closed form settles a rebound that would fly less than 1 ms.\n\n"
 		    << flights << "\n";
+	const std::string links = link_table(records, true);
+	if (!links.empty())
+		out << "## Persistent contact (LINK scenarios)\n\nIn these scenes contact persists (a ball pushing or "
+		       "resting on another): libpool advances the touching balls as a cluster by LCP steps (`link_begin`, "
+		       "`link_step`, `link_end` events; PHYSICS.md \"LINK\") between its exact events. No exact "
+		       "solution exists: the reference is libpool's result with those first-order steps "
+		       "(`reference_exact: false` in results.json), so `final pos vs libpool` is the engines' "
+		       "disagreement with libpool, and `vs other engine` the time-stepped engines' disagreement "
+		       "with each other at the same step. `link share` is the part of libpool's step time spent "
+		       "in steps that produced a link event (timed by the plugin around each `pool_sim_step`, "
+		       "median of the timed runs); `link steps` the LCP solves of the run.\n\n"
+		    << links << "\n";
 	std::vector<std::string> missing;
 	for (const Record &r : records)
 		if (r.reference == "none" && std::find(missing.begin(), missing.end(), r.scenario) == missing.end())

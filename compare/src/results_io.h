@@ -31,6 +31,12 @@ std::string results_table(const std::vector<Record> &records, bool markdown);
 /// The flight and landing table of the airborne runs ("" when no run has a landing).
 std::string landing_table(const std::vector<Record> &records, bool markdown);
 
+/// The persistent-contact (LINK) table: per scenario whose libpool run took link steps or whose
+/// reference is not exact, every run's CPU time (median / min), libpool's link share and counts,
+/// each engine's final positions against libpool and against the other time-stepped engines at
+/// the same step ("" when no such scenario ran).
+std::string link_table(const std::vector<Record> &records, bool markdown);
+
 /// Sets consistency_error: each time-stepped run's final positions against the same engine's
 /// run at its finest time step in the same scenario (the discretisation part of the error).
 void fill_consistency(std::vector<Record> *records);

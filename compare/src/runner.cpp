@@ -13,7 +13,7 @@ namespace {
 // One engine instance; every call into the engine that simulates is timed.
 class EngineRun {
 public:
-	explicit EngineRun(const pool_engine_api *api) : api_(api) {}
+	explicit EngineRun(const Plugin &plugin) : api_(plugin.api), link_stats_(plugin.link_stats) {}
 	~EngineRun() {
 		if (engine_)
 			api_->destroy(engine_);
@@ -125,6 +125,20 @@ public:
 		return s;
 	}
 
+	// The persistent-contact counters, when the plugin has the optional export and answers.
+	bool link(pool_engine_link_info *out) const {
+		*out = pool_engine_link_info{};
+		return link_stats_ && link_stats_(engine_, out) == 0;
+	}
+
+	// Records the share of this run's step time spent in link steps (a run with no step time, or
+	// a plugin that does not say, adds nothing).
+	void add_link_share(std::vector<double> *shares) const {
+		pool_engine_link_info l;
+		if (link(&l) && l.step_seconds > 0.0 && std::isfinite(l.link_seconds))
+			shares->push_back(std::min(1.0, std::max(0.0, l.link_seconds / l.step_seconds)));
+	}
+
 	double cpu = 0.0;
 	double setup_cpu = 0.0;
 
@@ -162,6 +176,7 @@ private:
 	}
 
 	const pool_engine_api *api_;
+	pool_engine_link_fn link_stats_; ///< optional export, may be null
 	void *engine_ = nullptr;
 };
 
@@ -186,6 +201,16 @@ Record invalid(Record *rec, double t) {
 	std::snprintf(at, sizeof at, " at t = %.6g s", t);
 	rec->error += at;
 	return *rec;
+}
+
+// The LINK counts of the measured run, when the plugin reports them.
+void link_counts(const EngineRun &run, Record *rec) {
+	pool_engine_link_info l;
+	if (!run.link(&l))
+		return;
+	rec->link_steps = l.link_steps;
+	rec->link_events = l.link_events;
+	rec->link_clusters = l.clusters;
 }
 
 } // namespace
@@ -222,6 +247,7 @@ Record blank_record(const Scenario &scenario, const Reference &ref, const Plugin
 	rec.event_driven = api->event_driven != 0;
 	rec.dt = rec.event_driven ? kNone : settings.dt;
 	rec.models_known = unsupported_models(scenario, plugin, &rec.unsupported_models);
+	rec.reference_exact = ref.has_truth() ? ref.exact() : -1;
 	return rec;
 }
 
@@ -256,7 +282,6 @@ std::vector<double> sample_times(const Reference &ref, int max_samples) {
 }
 
 Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &plugin, const RunSettings &settings) {
-	const pool_engine_api *api = plugin.api;
 	const pool_params &params = scenario.parsed.def.params;
 	const double max_time = scenario.parsed.def.max_time;
 	Record rec = blank_record(scenario, ref, plugin, settings);
@@ -265,11 +290,12 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 	// engine stops at a step boundary (the first at or after the instant asked for), so each state
 	// is compared with the reference at the time the engine actually reached.
 	std::vector<double> cpu_times;
+	std::vector<double> link_shares; // of each timed run whose plugin reports LINK timing
 	std::vector<BallSample> final_balls;
 	if (!ref.has_truth()) {
 		// No ground truth: run the shot to max_time and keep what the engine says about itself
 		// (cost, steps, its events and penetration); nothing is scored.
-		EngineRun run(api);
+		EngineRun run(plugin);
 		if (!run.create(scenario.json, settings.dt, &rec.error) || !run.finish(ref, max_time, &rec.error))
 			return rec;
 		if (!run.balls(scenario, &final_balls, &rec.error))
@@ -280,6 +306,8 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 			return invalid(&rec, engine_time(stats, ref.end_time));
 		rec.setup_cpu_seconds = run.setup_cpu;
 		cpu_times.push_back(run.cpu);
+		run.add_link_share(&link_shares);
+		link_counts(run, &rec);
 		rec.sim_seconds = stats.sim_time;
 		rec.steps = stats.steps;
 		rec.final_balls = final_balls;
@@ -289,7 +317,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 			rec.landings_engine += e.type == POOL_ENGINE_EVENT_BALL_TABLE;
 		}
 	} else {
-		EngineRun run(api);
+		EngineRun run(plugin);
 		if (!run.create(scenario.json, settings.dt, &rec.error))
 			return rec;
 		struct Sample {
@@ -358,6 +386,8 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 
 		rec.setup_cpu_seconds = run.setup_cpu;
 		cpu_times.push_back(run.cpu);
+		run.add_link_share(&link_shares);
+		link_counts(run, &rec);
 		rec.sim_seconds = stats.sim_time;
 		rec.steps = stats.steps;
 		rec.final_position_error = max_position_error(final_balls, ref_final);
@@ -375,16 +405,20 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 
 	// Short runs are repeated so the CPU time is not just clock resolution.
 	const double timing_start = cpu_now();
-	while (cpu_times[0] + cpu_now() - timing_start < settings.min_timing_cpu &&
-	       static_cast<int>(cpu_times.size()) < settings.max_repetitions) {
-		EngineRun run(api);
+	while ((cpu_times[0] + cpu_now() - timing_start < settings.min_timing_cpu ||
+	        static_cast<int>(cpu_times.size()) < settings.min_repetitions) &&
+	       static_cast<int>(cpu_times.size()) < std::max(settings.max_repetitions, settings.min_repetitions)) {
+		EngineRun run(plugin);
 		if (!run.create(scenario.json, settings.dt, &rec.error) || !run.finish(ref, max_time, &rec.error))
 			return rec;
 		cpu_times.push_back(run.cpu);
+		run.add_link_share(&link_shares);
 	}
 	rec.repetitions = static_cast<int>(cpu_times.size());
 	rec.cpu_seconds = median(cpu_times);
 	rec.cpu_seconds_min = *std::min_element(cpu_times.begin(), cpu_times.end());
+	if (!link_shares.empty())
+		rec.link_cpu_share = median(link_shares);
 
 	// Predictability: how far the outcome moves when the lead ball starts 1 um elsewhere.
 	if (settings.spread_runs > 0) {
@@ -395,7 +429,7 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 			const double angle = 2.0 * M_PI * k / n;
 			const std::string json = perturbed_json(scenario.json, id, settings.perturbation * std::cos(angle),
 			                                        settings.perturbation * std::sin(angle));
-			EngineRun run(api);
+			EngineRun run(plugin);
 			std::string error;
 			if (json.empty() || !run.create(json, settings.dt, &error) || !run.finish(ref, max_time, &error)) {
 				rec.error = "perturbed run " + std::to_string(k) + ": " + (json.empty() ? "bad scenario" : error);

@@ -14,6 +14,7 @@ struct RunSettings {
 	double perturbation = 1e-6;    ///< m, how far each perturbed run moves the lead ball
 	double min_timing_cpu = 0.2;   ///< s, repeat short runs (setup included) until this much CPU time passed
 	int max_repetitions = 2000;    ///< cap of those repetitions
+	int min_repetitions = 1;       ///< timed runs at least, however long (pool-compare --repeat)
 	int max_samples = 150;         ///< cap of the instants at which states are compared
 };
 

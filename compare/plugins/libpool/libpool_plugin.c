@@ -1,9 +1,14 @@
 // libpool as a comparison engine: event-driven and exact, so dt is ignored. The scenario is read
 // with the shared parser (tools/common/scenario.h) and set up exactly as pool-sim does.
+// Every pool_sim_step is timed here (the library has no clock), so the harness can say what share
+// of libpool's time its LINK steps (persistent contact) took.
+#define _POSIX_C_SOURCE 200809L // clock_gettime
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "pool_engine_plugin.h"
 #include "scenario.h"
@@ -15,6 +20,8 @@ typedef struct libpool_engine {
 	pool_ball_state *states; // scratch for pool_sim_state_at, ball_count long
 	double max_penetration;  // m, over the ball-ball events scanned so far
 	int scanned;             // events already scanned for penetration
+	double step_seconds;     // s, wall-clock time of every pool_sim_step and pool_sim_run_until call
+	double link_seconds;     // s, the part of it in steps that produced a LINK event
 	char error[256];         // last failure
 } libpool_engine;
 
@@ -24,6 +31,47 @@ static int fail(libpool_engine *e, pool_result r) {
 }
 
 // Interpenetration right after each ball-ball event (exact contacts give rounding only).
+// The monotonic clock, not CPU time: it is read twice per event, and on Linux only the monotonic
+// clock is answered without a system call (the harness's own CPU figures are process CPU time).
+static double clock_now(void) {
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static bool is_link_event(pool_event_type type) {
+	return type == POOL_EVENT_LINK_BEGIN || type == POOL_EVENT_LINK_STEP || type == POOL_EVENT_LINK_END;
+}
+
+// pool_sim_run_until(t), one timed pool_sim_step at a time: a step that produced a LINK event
+// counts as link time. The loop stops after the first event past t (pool_sim_state_at walks the
+// history back, and events() reports none past the time reached); pool_sim_run_until then only
+// marks t as processed, or ends a shot with nothing left before max_time.
+static pool_result run_timed(libpool_engine *e, double t) {
+	while (pool_sim_stop_reason(e->sim) == POOL_STOP_NONE && pool_sim_time(e->sim) <= t) {
+		int before = 0, after = 0;
+		pool_sim_events(e->sim, &before);
+		const double t0 = clock_now();
+		const int r = pool_sim_step(e->sim);
+		const double spent = clock_now() - t0;
+		e->step_seconds += spent;
+		if (r < 0)
+			return (pool_result)r;
+		const pool_event *list = pool_sim_events(e->sim, &after);
+		for (int i = before; i < after; ++i)
+			if (is_link_event(list[i].type)) {
+				e->link_seconds += spent;
+				break;
+			}
+		if (r == 0)
+			break;
+	}
+	const double t0 = clock_now();
+	const pool_result r = pool_sim_run_until(e->sim, t);
+	e->step_seconds += clock_now() - t0;
+	return r;
+}
+
 static void scan_penetration(libpool_engine *e) {
 	int count = 0;
 	const pool_event *events = pool_sim_events(e->sim, &count);
@@ -83,7 +131,7 @@ static int advance(void *engine, double t) {
 		snprintf(e->error, sizeof e->error, "libpool: cannot go back from %g s to %g s", e->now, t);
 		return -1;
 	}
-	pool_result r = pool_sim_run_until(e->sim, t);
+	pool_result r = run_timed(e, t);
 	if (r != POOL_OK)
 		return fail(e, r);
 	// Past the scenario's max_time the shot is frozen where libpool stopped it.
@@ -94,7 +142,7 @@ static int advance(void *engine, double t) {
 
 static int run_to_rest(void *engine, double max_time) {
 	libpool_engine *e = engine;
-	pool_result r = pool_sim_run_until(e->sim, max_time);
+	pool_result r = run_timed(e, max_time);
 	if (r != POOL_OK)
 		return fail(e, r);
 	scan_penetration(e);
@@ -189,6 +237,28 @@ static const pool_engine_api api = {
 
 __attribute__((visibility("default"))) const pool_engine_api *pool_engine_plugin(void) {
 	return &api;
+}
+
+// The LINK steps' share of the run (POOL_ENGINE_LINK_ENTRY): the plugin's timing of each step,
+// the library's own counts.
+__attribute__((visibility("default"))) int pool_engine_link_stats(void *engine, pool_engine_link_info *out) {
+	libpool_engine *e = engine;
+	if (!e || !out)
+		return -1;
+	pool_link_stats link;
+	if (pool_sim_link_stats(e->sim, &link) != POOL_OK)
+		return -1;
+	int count = 0;
+	const pool_event *list = pool_sim_events(e->sim, &count);
+	int64_t events = 0;
+	for (int i = 0; i < count; ++i)
+		events += is_link_event(list[i].type);
+	out->step_seconds = e->step_seconds;
+	out->link_seconds = e->link_seconds;
+	out->link_steps = link.steps;
+	out->link_events = events;
+	out->clusters = link.clusters;
+	return 0;
 }
 
 // Every optional model is libpool's own: the scenario's "models" reach the simulation through
