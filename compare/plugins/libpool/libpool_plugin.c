@@ -12,6 +12,12 @@
 
 #include "pool_engine_plugin.h"
 #include "scenario.h"
+// The LINK statistics (issue 11) arrive with pool/link.h; a libpool without it has no clusters,
+// and the plugin then leaves the optional export out (its records say null).
+#if __has_include("pool/link.h")
+#include "pool/link.h"
+#define LIBPOOL_PLUGIN_HAS_LINK 1
+#endif
 
 typedef struct libpool_engine {
 	pool_scenario scenario;  // parsed document (owns the initial balls)
@@ -239,6 +245,7 @@ __attribute__((visibility("default"))) const pool_engine_api *pool_engine_plugin
 	return &api;
 }
 
+#ifdef LIBPOOL_PLUGIN_HAS_LINK
 // The LINK steps' share of the run (POOL_ENGINE_LINK_ENTRY): the plugin's timing of each step,
 // the library's own counts.
 __attribute__((visibility("default"))) int pool_engine_link_stats(void *engine, pool_engine_link_info *out) {
@@ -260,6 +267,7 @@ __attribute__((visibility("default"))) int pool_engine_link_stats(void *engine, 
 	out->clusters = link.clusters;
 	return 0;
 }
+#endif
 
 // Every optional model is libpool's own: the scenario's "models" reach the simulation through
 // the shared parser (pool_scenario_setup), so none is missing.
