@@ -69,6 +69,11 @@
 /// theta d_i, 1e-8 of the step's effect on the largest basic value, usually far less.
 #define LEMKE_PIVOT_REL 1e-8
 
+/// When no entry passes LEMKE_PIVOT_REL, entries above LEMKE_PIVOT_MIN_REL max|d| are used
+/// before a ray is declared: a resting LINK cluster (velocities ~1e-20) reached false rays with
+/// only 1e-8-sized entries left positive.
+#define LEMKE_PIVOT_MIN_REL 1e-13
+
 /// Rows whose value after the ratio test's step, x_i - theta d_i, is within LEMKE_TIE_REL of the
 /// basic values' scale of zero tie with the minimum: rounding makes exact ties (degenerate
 /// vertices of the friction LCP) inexact by some ulps of the values involved.
@@ -608,18 +613,27 @@ static int ratio_test(lemke *L, int *leave) {
 		return -1;
 	double dtol = LEMKE_PIVOT_REL * dmax, theta = INFINITY;
 	int arg = -1;
-	for (int id = 0; id < m; ++id)
-		if (d[id] > dtol) {
-			double r = positive(x[id]) / d[id];
-			if (r < theta)
-				theta = r, arg = id;
-		}
+	for (int pass = 0; pass < 2 && arg < 0; ++pass) {
+		if (pass == 1)
+			dtol = LEMKE_PIVOT_MIN_REL * dmax;
+		for (int id = 0; id < m; ++id)
+			if (d[id] > dtol) {
+				double r = positive(x[id]) / d[id];
+				if (r < theta)
+					theta = r, arg = id;
+			}
+	}
 	if (arg < 0)
 		return -1;
-	// z0 leaves if it may (see the header comment)
+	// z0 leaves if it may (see the header comment). Its pivot needs only LEMKE_PIVOT_MIN_REL:
+	// it ends the solve, and the final solve and residual check judge the basis it leaves.
 	int z0 = L->n + L->colslot[L->n];
-	if (d[z0] > dtol && z0 != arg) {
+	if (d[z0] > LEMKE_PIVOT_MIN_REL * dmax && z0 != arg) {
 		double theta0 = positive(x[z0]) / d[z0], slack = LEMKE_Z0_SLACK * xscale;
+		if (theta0 <= theta) {
+			*leave = z0;
+			return 0;
+		}
 		if ((theta0 - theta) * d[arg] <= slack) {
 			int ok = 1;
 			for (int id = 0; id < m && ok; ++id)
