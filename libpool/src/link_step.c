@@ -1,0 +1,701 @@
+// One LINK step of a cluster (PHYSICS.md "LINK"; the API and its rules are in link_step.h).
+//
+// Unknowns, in PHYSICS.md's order, for nc contacts of eta friction directions each:
+//   x = (dt beta [nc * eta], dt fn [nc], lambda [nc]),   size L = nc (eta + 2),
+// the impulses of the step along each contact's friction directions and normal, and lambda, the
+// magnitude of the post-step slip at a sliding contact. With W = J' M^-1 J over the stacked
+// directions (normal and friction) and v* the free velocities (below):
+//   w_beta   = D' W D x_beta + D' W N x_n + E lambda + D' J' v*          >= 0  _|_ x_beta
+//   w_n      = N' W D x_beta + N' W N x_n + N' J' v* + gap term / dt     >= 0  _|_ x_n
+//   w_lambda = mu x_n - E' x_beta                                        >= 0  _|_ lambda
+// and then v+ = v* + M^-1 J x. w_n is the contact's normal velocity after the step plus the
+// Stewart-Trinkle gap term, so a contact open by gap may close by exactly gap during the step
+// and no contact opens into interpenetration: positions advance linearly (p += dt v+) and the
+// distance between two spheres, from a sphere to a line or to a plane is convex in the
+// positions, so the linearised gap gap + dt n'u+ >= 0 is a lower bound of the true gap at the
+// step's end.
+//
+// Restitution is zero: the step is inelastic at velocity level (a closing contact ends the
+// step at relative normal velocity >= 0, nothing bounces). Impacts with restitution are the
+// event handlers' job (collision.c); inside a cluster contact is persistent by definition.
+//
+// Existing penetration (gap < 0: rounding, or a cluster formed overlapping): Baumgarte
+// stabilisation, the normal row asks for a separation speed of POOL_LINK_BAUMGARTE of the depth
+// per step, capped at POOL_LINK_PUSH_SPEED. Full projection (the whole depth in one step) would
+// add 1/2 m (depth/dt)^2 of kinetic energy, unbounded as dt -> 0. With the cap, what a step can
+// add is bounded: KE+ - KE* = -sum fn gap_term - sum mu fn lambda - 1/2 x'Wx <= sum_c fn_c
+// POOL_LINK_PUSH_SPEED over the penetrating contacts (the friction and the x'Wx terms only
+// dissipate).
+//
+// Free velocities v*: gravity (f_ext) over dt, and the two cloth resistances that are not
+// point-contact friction, as explicit wrenches of a ball touching the cloth, each clamped so it
+// stops a motion rather than reverse it within the step:
+// - spin friction: a torque -mu_spin m g R sign(wz) k (I dwz/dt = -(5 mu_spin g / 2R) I), so wz
+//   decays at 5 mu_spin g / (2R) as in the closed form; wz does not enter the cloth slip
+//   v + R k x w, so the LCP's cloth contact never sees it;
+// - rolling resistance, for a ball whose cloth slip at the step's start is within what the
+//   cloth's sliding friction removes in one step ((7/2) mu_slide g dt, i.e. a rolling ball): the
+//   wrench of the closed-form rolling deceleration, dv = -mu_roll g dt v^, dw = k x dv / R. It
+//   leaves the slip v + R k x w unchanged, so a rolling ball stays rolling without any
+//   friction from the LCP and decelerates at mu_roll g exactly; a sliding ball gets none (the
+//   closed form's sliding motion has no rolling resistance). The load is m g: a cushion
+//   pressing the ball into the cloth does not raise it (the closed form's law).
+#include "link_step.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "geometry.h"
+#include "lemke.h"
+#include "vec3.h"
+
+/// Fraction of an existing penetration the step removes (Baumgarte): a fifth per step spreads a
+/// correction over a few steps, so a deep overlap is not cancelled by one violent push.
+#define POOL_LINK_BAUMGARTE 0.2
+
+/// m/s, the largest separation speed the penetration correction asks for (bounds the energy it
+/// adds, see the top of the file): a millimetre per second is invisible and still removes the
+/// micrometre overlaps of rounding in a step.
+#define POOL_LINK_PUSH_SPEED 1e-3
+
+/// m, added to the gap a step can close (speed bound x dt) when choosing the contacts: covers
+/// gravity's dt^2 term and rounding. Extra contacts only enlarge the LCP; a missing one could
+/// let two balls interpenetrate.
+#define POOL_LINK_MARGIN POOL_LINK_TOUCH_GAP
+
+/// Contacts above which a step refuses (POOL_ERR_OUT_OF_MEMORY) rather than size a dense LCP of
+/// (contacts (eta + 2))^2 doubles: 2000 contacts are 2 GB at eta = 14, far beyond any cluster
+/// of a rack's balls (a frozen 16-ball cluster has 47), and the product stays inside size_t.
+#define POOL_LINK_CONTACTS_MAX 2000
+
+/// m/s, tangential slip below which a contact's friction directions are not aligned with it
+/// (its direction is then rounding noise): fixed directions instead.
+#define POOL_LINK_ALIGN_SLIP 1e-9
+
+#define LINK_PI 3.14159265358979323846
+
+typedef enum link_kind { LINK_BALL = 0, LINK_CLOTH = 1, LINK_CUSHION = 2 } link_kind;
+
+/// One contact of the step: ball a (body 1) against ball b, the cloth or a cushion nose.
+typedef struct link_contact {
+	link_kind kind;
+	int a, b;         ///< ball indices; b = -1 for the cloth and the cushions
+	int rail;         ///< pool_rail of a cushion contact, else POOL_RAIL_NONE
+	pool_vec3 n;      ///< unit normal, towards ball a
+	pool_vec3 ra, rb; ///< from each centre to the contact point
+	double gap;       ///< m, distance between the surfaces (< 0: penetration)
+	double mu;        ///< friction of the pair
+} link_contact;
+
+/// A contact's place in a ball's incidence list: the contact and which side the ball is on.
+typedef struct link_incidence {
+	int contact;
+	int side; ///< 0: ball a, 1: ball b
+} link_incidence;
+
+void pool_link_workspace_free(pool_link_workspace *ws, const pool_allocator *alloc) {
+	if (!ws)
+		return;
+	if (ws->memory && alloc && alloc->free)
+		alloc->free(ws->memory, alloc->context);
+	memset(ws, 0, sizeof *ws);
+}
+
+// ---- contacts
+
+typedef struct link_scene {
+	const pool_sim_def *def;
+	const pool_ball_state *s;
+	int n;
+	int planar;
+	double reach;   ///< m, the most a ball's centre can move in the step (speed bound x dt)
+} link_scene;
+
+static pool_vec3 centre(const link_scene *sc, int k) {
+	pool_vec3 p = sc->s[k].pos;
+	if (sc->planar)
+		p.z = sc->def->params.ball_radius;
+	return p;
+}
+
+// Finds the contacts (into out when not NULL) and returns their count; the same order every
+// time: per ball its cloth contact, its cushions by rail, then its pairs with later balls.
+static int find_contacts(const link_scene *sc, link_contact *out) {
+	const double R = sc->def->params.ball_radius;
+	const pool_params *p = &sc->def->params;
+	const pool_table_def *table = &sc->def->table;
+	int count = 0;
+	for (int a = 0; a < sc->n; ++a) {
+		const pool_vec3 pa = centre(sc, a);
+		// Cloth: the plane z = 0; planar mode keeps every ball on it at gap 0.
+		const double cloth_gap = sc->planar ? 0.0 : pa.z - R;
+		if (sc->planar || cloth_gap < sc->reach + POOL_LINK_MARGIN) {
+			if (out) {
+				link_contact *c = &out[count];
+				c->kind = LINK_CLOTH;
+				c->a = a;
+				c->b = -1;
+				c->rail = POOL_RAIL_NONE;
+				c->n = pool_v3(0.0, 0.0, 1.0);
+				c->ra = pool_v3(0.0, 0.0, -R);
+				c->rb = pool_v3(0.0, 0.0, 0.0);
+				c->gap = cloth_gap;
+				c->mu = p->mu_slide;
+			}
+			++count;
+		}
+		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
+			const int along_x = pool_rail_along_x((pool_rail)rail);
+			const double across = (along_x ? pa.y : pa.x) - pool_rail_nose_line(table, (pool_rail)rail);
+			const double up = pa.z - table->cushion_height;
+			const double gap = sqrt(across * across + up * up) - R;
+			if (!(gap < sc->reach + POOL_LINK_MARGIN))
+				continue;
+			// Inside a pocket mouth there is no nose: the world pockets a ball crossing there.
+			if (pool_pocket_at(table, (pool_rail)rail, along_x ? pa.x : pa.y) != POOL_POCKET_NONE)
+				continue;
+			if (out) {
+				link_contact *c = &out[count];
+				c->kind = LINK_CUSHION;
+				c->a = a;
+				c->b = -1;
+				c->rail = rail;
+				c->n = pool_cushion_normal(table, pa, (pool_rail)rail);
+				c->ra = pool_v3_scale(c->n, -R);
+				c->rb = pool_v3(0.0, 0.0, 0.0);
+				c->gap = gap;
+				c->mu = p->mu_cushion;
+			}
+			++count;
+		}
+		for (int b = a + 1; b < sc->n; ++b) {
+			const pool_vec3 d = pool_v3_sub(pa, centre(sc, b));
+			const double dist = pool_v3_len(d);
+			const double gap = dist - 2.0 * R;
+			// Two balls close at up to twice the speed bound.
+			if (!(gap < 2.0 * sc->reach + POOL_LINK_MARGIN) || !(dist > 0.0))
+				continue;
+			if (out) {
+				link_contact *c = &out[count];
+				c->kind = LINK_BALL;
+				c->a = a;
+				c->b = b;
+				c->rail = POOL_RAIL_NONE;
+				c->n = pool_v3_scale(d, 1.0 / dist);
+				c->ra = pool_v3_scale(c->n, -R);
+				c->rb = pool_v3_scale(c->n, R);
+				c->gap = gap;
+				c->mu = p->mu_ball;
+			}
+			++count;
+		}
+	}
+	return count;
+}
+
+/// FNV-1a over the contact set: the warm start's basis is only valid for the same contacts in
+/// the same order with the same eta.
+static unsigned long long contact_key(const link_contact *c, int nc, int n, int eta) {
+	unsigned long long h = 1469598103934665603ull;
+	const unsigned long long prime = 1099511628211ull;
+#define LINK_MIX(v) (h = (h ^ (unsigned long long)(uint32_t)(v)) * prime)
+	LINK_MIX(n);
+	LINK_MIX(eta);
+	LINK_MIX(nc);
+	for (int i = 0; i < nc; ++i) {
+		LINK_MIX(c[i].kind);
+		LINK_MIX(c[i].a);
+		LINK_MIX(c[i].b);
+		LINK_MIX(c[i].rail);
+	}
+#undef LINK_MIX
+	return h;
+}
+
+// ---- velocities of the contact points
+
+/// Velocity of ball k's material point at offset r from its centre.
+static pool_vec3 point_velocity(const double *V, int k, pool_vec3 r) {
+	const double *v = V + 6 * k;
+	return pool_v3_add(pool_v3(v[0], v[1], v[2]), pool_v3_cross(pool_v3(v[3], v[4], v[5]), r));
+}
+
+/// Relative velocity at a contact: ball a's contact point minus the other body's.
+static pool_vec3 contact_velocity(const link_contact *c, const double *V) {
+	pool_vec3 u = point_velocity(V, c->a, c->ra);
+	if (c->b >= 0)
+		u = pool_v3_sub(u, point_velocity(V, c->b, c->rb));
+	return u;
+}
+
+/// Unit vectors t1, t2 completing n to a right-handed basis: t1 along the tangential slip u_t
+/// when aligning and the slip is resolved, else fixed (k x n, or x on the cloth).
+static void tangent_basis(pool_vec3 n, pool_vec3 slip, int align, pool_vec3 *t1, pool_vec3 *t2) {
+	pool_vec3 ut = pool_v3_madd(slip, -pool_v3_dot(slip, n), n);
+	const double speed = pool_v3_len(ut);
+	if (align && speed > POOL_LINK_ALIGN_SLIP) {
+		*t1 = pool_v3_scale(ut, 1.0 / speed);
+	} else {
+		pool_vec3 k = pool_v3(0.0, 0.0, 1.0);
+		pool_vec3 a = pool_v3_cross(k, n);
+		double la = pool_v3_len(a);
+		if (la < 1e-3) { // n (anti)parallel to k: the cloth, or a ball on top of another
+			a = pool_v3_cross(n, pool_v3(0.0, 1.0, 0.0)); // = x for n = k
+			la = pool_v3_len(a);
+		}
+		*t1 = pool_v3_scale(a, 1.0 / la);
+	}
+	*t2 = pool_v3_cross(n, *t1);
+}
+
+// ---- workspace
+
+typedef struct link_memory {
+	int *basis;            // L
+	double *A;             // L x L
+	double *q, *z;         // L
+	double *V;             // 6 n: free velocities, then the step's
+	double *G;             // nc x 2 x (1 + eta) x 6: generalized directions, per side
+	link_contact *contacts; // nc
+	link_incidence *inc;   // 2 nc
+	int *inc_start;        // n + 1
+	void *lemke;
+} link_memory;
+
+static size_t align_up(size_t x) { return (x + 15u) & ~(size_t)15u; }
+
+/// Lays out the step's arrays in `base` (NULL: only sizes them); returns the bytes needed. The
+/// basis comes first, so it survives a regrow at the same place.
+static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
+	const size_t L = (size_t)nc * (size_t)(eta + 2);
+	const size_t dirs = (size_t)(1 + eta);
+	size_t at = 0;
+	char *b = base;
+#define LINK_PLACE(field, type, count)                                                                                 \
+	do {                                                                                                           \
+		if (m)                                                                                                 \
+			m->field = (type *)(void *)(b ? b + at : NULL);                                                \
+		at = align_up(at + sizeof(type) * (size_t)(count));                                                    \
+	} while (0)
+	LINK_PLACE(basis, int, L);
+	LINK_PLACE(A, double, L * L);
+	LINK_PLACE(q, double, L);
+	LINK_PLACE(z, double, L);
+	LINK_PLACE(V, double, 6 * (size_t)n);
+	LINK_PLACE(G, double, (size_t)nc * 2 * dirs * 6);
+	LINK_PLACE(contacts, link_contact, nc);
+	LINK_PLACE(inc, link_incidence, 2 * (size_t)nc);
+	LINK_PLACE(inc_start, int, (size_t)n + 1);
+#undef LINK_PLACE
+	if (m)
+		m->lemke = b ? b + at : NULL;
+	at += pool_lemke_workspace_bytes((int)L);
+	return at;
+}
+
+/// Makes the workspace hold `bytes`, keeping the warm-start basis; POOL_ERR_OUT_OF_MEMORY
+/// leaves it as it was.
+static pool_result reserve(pool_link_workspace *ws, const pool_allocator *alloc, size_t bytes) {
+	if (ws->memory && ws->bytes >= bytes)
+		return POOL_OK;
+	size_t grown = ws->bytes + ws->bytes / 2; // amortised growth over a shot's growing clusters
+	if (grown < bytes)
+		grown = bytes;
+	void *memory = alloc->alloc(grown, alloc->context);
+	if (!memory)
+		return POOL_ERR_OUT_OF_MEMORY;
+	if (ws->memory) {
+		if (ws->basis && ws->n_basis > 0)
+			memcpy(memory, ws->basis, sizeof(int) * (size_t)ws->n_basis);
+		alloc->free(ws->memory, alloc->context);
+	}
+	ws->memory = memory;
+	ws->bytes = grown;
+	ws->basis = memory;
+	return POOL_OK;
+}
+
+// ---- the step
+
+static int finite_state(const pool_ball_state *b) {
+	return pool_v3_finite(b->pos) && pool_v3_finite(b->vel) && pool_v3_finite(b->omega);
+}
+
+/// Free velocities: gravity and the explicit cloth resistances (top of the file).
+static void free_velocities(const link_scene *sc, const link_contact *c, int nc, double dt, double *V) {
+	const pool_params *p = &sc->def->params;
+	const double R = p->ball_radius;
+	for (int k = 0; k < sc->n; ++k) {
+		const pool_ball_state *b = &sc->s[k];
+		double *v = V + 6 * k;
+		v[0] = b->vel.x;
+		v[1] = b->vel.y;
+		v[2] = sc->planar ? 0.0 : b->vel.z;
+		v[3] = b->omega.x;
+		v[4] = b->omega.y;
+		v[5] = b->omega.z;
+	}
+	for (int i = 0; i < nc; ++i) {
+		if (c[i].kind != LINK_CLOTH || !(c[i].gap <= POOL_LINK_TOUCH_GAP))
+			continue;
+		double *v = V + 6 * c[i].a;
+		// Spin friction: wz towards 0 at 5 mu_spin g / (2R), never past it.
+		const double dwz = 2.5 * p->mu_spin * p->g * dt / R;
+		v[5] = fabs(v[5]) <= dwz ? 0.0 : v[5] - copysign(dwz, v[5]);
+		// Rolling resistance, for a rolling ball only.
+		const pool_vec3 vel = pool_v3(v[0], v[1], 0.0), w = pool_v3(v[3], v[4], v[5]);
+		const pool_vec3 slip = pool_v3_add(vel, pool_v3_scale(pool_v3_kcross(w), R));
+		if (!(pool_v3_len(pool_v3_xy(slip)) <= 3.5 * p->mu_slide * p->g * dt))
+			continue;
+		const double speed = pool_v3_len(vel);
+		if (!(speed > 0.0))
+			continue;
+		const double dv = fmin(p->mu_roll * p->g * dt, speed);
+		const pool_vec3 delta = pool_v3_scale(vel, -dv / speed);
+		const pool_vec3 dw = pool_v3_scale(pool_v3_kcross(delta), 1.0 / R);
+		v[0] += delta.x;
+		v[1] += delta.y;
+		v[3] += dw.x;
+		v[4] += dw.y;
+	}
+	for (int k = 0; k < sc->n; ++k)
+		V[6 * k + 2] -= p->g * dt;
+}
+
+/// The separation the normal row asks for, as a velocity: -gap/dt for an open contact (it may
+/// close exactly), a capped Baumgarte push for a penetrating one.
+static double gap_velocity(double gap, double dt) {
+	if (gap >= 0.0)
+		return gap / dt;
+	return -fmin(POOL_LINK_BAUMGARTE * -gap / dt, POOL_LINK_PUSH_SPEED);
+}
+
+/// m/s: the fastest any ball's centre can move over the step. An inelastic step adds no kinetic
+/// energy (beyond the capped penetration push), so no centre moves faster than the cluster's
+/// whole kinetic energy, with gravity's dt, allows.
+static double speed_bound(const link_scene *sc, double dt) {
+	const pool_params *p = &sc->def->params;
+	const double R = p->ball_radius;
+	double energy = 0.0; // kinetic energy / (m / 2)
+	for (int k = 0; k < sc->n; ++k) {
+		const pool_ball_state *b = &sc->s[k];
+		const double vz = sc->planar ? 0.0 : fabs(b->vel.z) + p->g * dt;
+		energy += b->vel.x * b->vel.x + b->vel.y * b->vel.y + vz * vz + 0.4 * R * R * pool_v3_dot(b->omega, b->omega);
+	}
+	return sqrt(energy) + POOL_LINK_PUSH_SPEED;
+}
+
+/// What the building blocks of a step share.
+typedef struct link_problem {
+	link_memory m;
+	const link_contact *c;
+	int n, nc, eta, dirs, L;
+	double inv[6]; ///< M^-1 of a ball: 1/m three times, 1/I three times
+} link_problem;
+
+/// Contact i's side of ball a (side 0) or b (side 1): its dirs generalized directions, 6 each.
+static double *directions(const link_problem *P, int i, int side) {
+	return P->m.G + ((size_t)i * 2 + (size_t)side) * (size_t)P->dirs * 6;
+}
+
+/// Index in x of contact i's direction j (0 the normal, 1 ... eta friction): friction first,
+/// then the normals, then the lambdas, as PHYSICS.md orders them.
+static size_t row_of(const link_problem *P, int i, int j) {
+	return (size_t)(j == 0 ? P->nc * P->eta + i : i * P->eta + j - 1);
+}
+static size_t lambda_of(const link_problem *P, int i) { return (size_t)(P->nc * (P->eta + 1) + i); }
+
+/// G = sigma [d; r x d] per contact side (sigma = -1 for ball b): direction 0 the normal, 1 ...
+/// eta the friction directions, d_{j + eta/2} = -d_j exactly.
+static void build_directions(link_problem *P, int align) {
+	const int eta = P->eta;
+	for (int i = 0; i < P->nc; ++i) {
+		const link_contact *c = &P->c[i];
+		pool_vec3 t1, t2;
+		tangent_basis(c->n, contact_velocity(c, P->m.V), align, &t1, &t2);
+		pool_vec3 d[POOL_LINK_ETA_MAX + 1];
+		d[0] = c->n;
+		for (int j = 0; j < eta / 2; ++j) {
+			const double angle = 2.0 * LINK_PI * j / eta;
+			d[1 + j] = pool_v3_add(pool_v3_scale(t1, cos(angle)), pool_v3_scale(t2, sin(angle)));
+			d[1 + j + eta / 2] = pool_v3_scale(d[1 + j], -1.0);
+		}
+		for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
+			double *g = directions(P, i, side);
+			const double sigma = side ? -1.0 : 1.0;
+			const pool_vec3 r = side ? c->rb : c->ra;
+			for (int j = 0; j < P->dirs; ++j) {
+				const pool_vec3 t = pool_v3_cross(r, d[j]);
+				double *gj = g + 6 * j;
+				gj[0] = sigma * d[j].x;
+				gj[1] = sigma * d[j].y;
+				gj[2] = sigma * d[j].z;
+				gj[3] = sigma * t.x;
+				gj[4] = sigma * t.y;
+				gj[5] = sigma * t.z;
+			}
+		}
+	}
+}
+
+/// The contacts of each ball, as (contact, side) lists: J's block sparsity.
+static void build_incidence(link_problem *P) {
+	int *start = P->m.inc_start;
+	for (int k = 0; k <= P->n; ++k)
+		start[k] = 0;
+	for (int i = 0; i < P->nc; ++i) {
+		++start[P->c[i].a + 1];
+		if (P->c[i].b >= 0)
+			++start[P->c[i].b + 1];
+	}
+	for (int k = 0; k < P->n; ++k)
+		start[k + 1] += start[k];
+	for (int i = 0; i < P->nc; ++i) { // start[k] is meanwhile ball k's next free slot
+		const link_incidence ia = {i, 0}, ib = {i, 1};
+		P->m.inc[start[P->c[i].a]++] = ia;
+		if (P->c[i].b >= 0)
+			P->m.inc[start[P->c[i].b]++] = ib;
+	}
+	for (int k = P->n; k > 0; --k) // start[k - 1] now ends ball k - 1, where ball k starts
+		start[k] = start[k - 1];
+	start[0] = 0;
+}
+
+/// The LCP matrix: J' M^-1 J one block per pair of contacts sharing a ball (M^-1 is per ball,
+/// so the blocks of contacts with no ball in common are zero), then E, -E' and mu.
+static void build_matrix(link_problem *P) {
+	const size_t L = (size_t)P->L;
+	double *A = P->m.A;
+	memset(A, 0, sizeof(double) * L * L);
+	for (int k = 0; k < P->n; ++k)
+		for (int e1 = P->m.inc_start[k]; e1 < P->m.inc_start[k + 1]; ++e1)
+			for (int e2 = e1; e2 < P->m.inc_start[k + 1]; ++e2) {
+				const link_incidence i1 = P->m.inc[e1], i2 = P->m.inc[e2];
+				const double *g1 = directions(P, i1.contact, i1.side), *g2 = directions(P, i2.contact, i2.side);
+				for (int j1 = 0; j1 < P->dirs; ++j1) {
+					const double *a = g1 + 6 * j1;
+					const double h[6] = {a[0] * P->inv[0], a[1] * P->inv[1], a[2] * P->inv[2],
+					                     a[3] * P->inv[3], a[4] * P->inv[4], a[5] * P->inv[5]};
+					const size_t row = row_of(P, i1.contact, j1);
+					for (int j2 = 0; j2 < P->dirs; ++j2) {
+						const double *b = g2 + 6 * j2;
+						const double w = h[0] * b[0] + h[1] * b[1] + h[2] * b[2] + h[3] * b[3] + h[4] * b[4] +
+						                 h[5] * b[5];
+						const size_t col = row_of(P, i2.contact, j2);
+						A[row * L + col] += w;
+						if (e2 != e1) // the mirror block (the diagonal block is computed whole)
+							A[col * L + row] += w;
+					}
+				}
+			}
+	for (int i = 0; i < P->nc; ++i) {
+		const size_t lambda = lambda_of(P, i);
+		for (int j = 1; j < P->dirs; ++j) {
+			const size_t beta = row_of(P, i, j);
+			A[beta * L + lambda] = 1.0;  // E
+			A[lambda * L + beta] = -1.0; // -E'
+		}
+		A[lambda * L + row_of(P, i, 0)] = P->c[i].mu;
+	}
+}
+
+/// b: the free relative velocity along every direction, the gap term on the normals, 0 on the
+/// lambda rows.
+static void build_vector(link_problem *P, double dt) {
+	for (int i = 0; i < P->nc; ++i) {
+		const link_contact *c = &P->c[i];
+		for (int j = 0; j < P->dirs; ++j) {
+			double sum = 0.0;
+			for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
+				const double *g = directions(P, i, side) + 6 * j;
+				const double *v = P->m.V + 6 * (side ? c->b : c->a);
+				sum += g[0] * v[0] + g[1] * v[1] + g[2] * v[2] + g[3] * v[3] + g[4] * v[4] + g[5] * v[5];
+			}
+			if (j == 0)
+				sum += gap_velocity(c->gap, dt);
+			P->m.q[row_of(P, i, j)] = sum;
+		}
+		P->m.q[lambda_of(P, i)] = 0.0;
+	}
+}
+
+/// Puts the LCP in velocity units: the impulse unknowns (friction and normal) divided by the
+/// ball mass, the lambda rows (mu fn - E' beta, impulses) divided by it too. Positive scalings
+/// of unknowns and rows keep every solution of the LCP; they make M's entries O(1) (J' M^-1 J
+/// is ~1/m, 6 per kg for a pool ball) and Lemke's residual a velocity, comparable with q's.
+static void scale_to_velocity_units(link_problem *P, double mass) {
+	const size_t L = (size_t)P->L, impulses = (size_t)P->nc * (size_t)(P->eta + 1);
+	for (size_t r = 0; r < L; ++r) {
+		double *row = P->m.A + r * L;
+		for (size_t c = 0; c < impulses; ++c)
+			row[c] *= mass;
+		if (r >= impulses)
+			for (size_t c = 0; c < L; ++c)
+				row[c] /= mass;
+	}
+}
+
+/// The step's own check of a solve, in the LCP's velocity units: max over i of -z_i, -w_i and
+/// min(z_i, w_i), w = A z + q, relative to 1 + max |q| (a velocity scale that a wrong, huge z
+/// cannot inflate, unlike Lemke's own scale of the terms of A z).
+static double velocity_residual(const double *A, const double *q, const double *z, int L) {
+	double worst = 0.0, scale = 1.0;
+	for (int i = 0; i < L; ++i) {
+		double w = q[i];
+		const double *row = A + (size_t)i * (size_t)L;
+		for (int j = 0; j < L; ++j)
+			w += row[j] * z[j];
+		worst = fmax(worst, fmax(fmax(-z[i], -w), fmin(z[i], w)));
+		scale = fmax(scale, 1.0 + fabs(q[i]));
+	}
+	return isfinite(worst) ? worst / scale : INFINITY;
+}
+
+/// v+ = v* + M^-1 J x.
+static void apply_impulses(link_problem *P) {
+	for (int i = 0; i < P->nc; ++i) {
+		const link_contact *c = &P->c[i];
+		for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
+			double *v = P->m.V + 6 * (side ? c->b : c->a);
+			const double *g = directions(P, i, side);
+			for (int j = 0; j < P->dirs; ++j) {
+				const double x = P->m.z[row_of(P, i, j)];
+				if (x != 0.0)
+					for (int e = 0; e < 6; ++e)
+						v[e] += x * g[6 * j + e] * P->inv[e];
+			}
+		}
+	}
+}
+
+pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int n, double dt,
+                                const pool_link_options *options, pool_link_workspace *ws,
+                                const pool_allocator *alloc, pool_link_step_stats *stats) {
+	if (stats)
+		memset(stats, 0, sizeof *stats);
+	if (!def || !s || n < 1 || !ws || !options || !alloc || !alloc->alloc || !alloc->free)
+		return POOL_ERR_INVALID_ARGUMENT;
+	const int eta = options->eta;
+	if (eta < 4 || eta > POOL_LINK_ETA_MAX || eta % 2)
+		return POOL_ERR_INVALID_ARGUMENT;
+	if (isnan(dt) || !isfinite(dt))
+		return POOL_ERR_NON_FINITE;
+	if (!(dt > 0.0))
+		return POOL_ERR_INVALID_ARGUMENT;
+	for (int k = 0; k < n; ++k)
+		if (!finite_state(&s[k]))
+			return POOL_ERR_NON_FINITE;
+
+	link_scene sc = {def, s, n, !def->airborne, 0.0};
+	sc.reach = speed_bound(&sc, dt) * dt;
+	const int nc = find_contacts(&sc, NULL);
+	if (nc > POOL_LINK_CONTACTS_MAX)
+		return POOL_ERR_OUT_OF_MEMORY;
+
+	link_problem P;
+	memset(&P, 0, sizeof P);
+	const double mass = def->params.ball_mass, R = def->params.ball_radius, inertia = 0.4 * mass * R * R;
+	for (int e = 0; e < 6; ++e)
+		P.inv[e] = e < 3 ? 1.0 / mass : 1.0 / inertia;
+	P.n = n;
+	P.nc = nc;
+	P.eta = eta;
+	P.dirs = 1 + eta;
+	P.L = nc * (eta + 2);
+	pool_result r = reserve(ws, alloc, layout(NULL, n, nc, eta, NULL));
+	if (r)
+		return r;
+	layout(ws->memory, n, nc, eta, &P.m);
+	ws->basis = P.m.basis;
+	find_contacts(&sc, P.m.contacts);
+	P.c = P.m.contacts;
+
+	free_velocities(&sc, P.c, nc, dt, P.m.V);
+	build_directions(&P, options->align_friction);
+	build_incidence(&P);
+	build_vector(&P, dt);
+
+	// Warm start from the previous step's basis when the contact set is the same.
+	const unsigned long long key = contact_key(P.c, nc, n, eta);
+	if (!(ws->n_basis == P.L && ws->basis_key == key))
+		for (int i = 0; i < P.L; ++i)
+			P.m.basis[i] = 0;
+	ws->n_basis = 0; // invalid until this solve succeeds
+	// The friction LCP always has a solution, but its degeneracy (every unused friction
+	// direction of a sticking contact at w = 0) can defeat Lemke's tie-breaking in floating
+	// point: a false ray, or a residual above the limit. Each failure is retried from a cold
+	// start with the impulse block made positive definite by a compliance of
+	// POOL_LINK_REGULARIZATION (then 1000 times that): a contact yielding 1e-9 (1e-6) m/s per m/s
+	// of impulse, far below anything the step resolves. Every attempt's residual is checked.
+	static const double compliance[] = {0.0, POOL_LINK_REGULARIZATION, 1e3 * POOL_LINK_REGULARIZATION};
+	// (1e-6 at most: a contact that gives way by a micrometre per second per m/s of impulse.)
+	pool_lemke_stats ls;
+	pool_lemke_status status = POOL_LEMKE_BAD_INPUT;
+	int pivots = 0;
+	for (size_t attempt = 0; attempt < sizeof compliance / sizeof compliance[0]; ++attempt) {
+		build_matrix(&P);
+		scale_to_velocity_units(&P, mass);
+		for (int i = 0; i < nc * (eta + 1); ++i)
+			P.m.A[(size_t)i * (size_t)P.L + (size_t)i] += compliance[attempt];
+		if (attempt > 0)
+			for (int i = 0; i < P.L; ++i)
+				P.m.basis[i] = 0;
+		memset(&ls, 0, sizeof ls);
+		status = pool_lemke_solve(P.L, P.m.A, P.m.q, P.m.z, P.m.basis, 0, P.m.lemke, &ls);
+		pivots += ls.pivots;
+		if (status == POOL_LEMKE_SOLVED || status == POOL_LEMKE_RESIDUAL) {
+			ls.residual = velocity_residual(P.m.A, P.m.q, P.m.z, P.L);
+			if (ls.residual <= POOL_LINK_RESIDUAL_MAX) {
+				status = POOL_LEMKE_SOLVED;
+				break;
+			}
+			status = POOL_LEMKE_RESIDUAL;
+		}
+	}
+	if (stats) {
+		stats->contacts = nc;
+		stats->pivots = pivots;
+		stats->warm = ls.warm;
+		stats->residual = ls.residual;
+		stats->lcp_size = P.L;
+	}
+	if (status != POOL_LEMKE_SOLVED)
+		return POOL_ERR_INTERNAL;
+
+	for (int i = 0; i < nc * (eta + 1); ++i)
+		P.m.z[i] *= mass; // back to impulses (scale_to_velocity_units)
+	apply_impulses(&P);
+	for (int k = 0; k < 6 * n; ++k)
+		if (!isfinite(P.m.V[k]))
+			return POOL_ERR_INTERNAL;
+	if (sc.planar)
+		for (int k = 0; k < n; ++k)
+			P.m.V[6 * k + 2] = 0.0;
+	ws->basis_key = key;
+	ws->n_basis = P.L;
+
+	if (stats)
+		for (int i = 0; i < nc; ++i) {
+			if (!(P.c[i].gap <= POOL_LINK_TOUCH_GAP))
+				continue;
+			if (P.c[i].kind != LINK_CLOTH) {
+				++stats->touching;
+				// The push the contact carried over the step, as a speed (dt fn / m).
+				stats->max_push = fmax(stats->max_push, P.m.z[row_of(&P, i, 0)] / mass);
+			}
+			stats->max_contact_speed = fmax(stats->max_contact_speed, pool_v3_len(contact_velocity(&P.c[i], P.m.V)));
+		}
+	for (int k = 0; k < n; ++k) {
+		const double *v = P.m.V + 6 * k;
+		s[k].vel = pool_v3(v[0], v[1], v[2]);
+		s[k].omega = pool_v3(v[3], v[4], v[5]);
+	}
+	return POOL_OK;
+}
+
+pool_result pool_link_step(const pool_sim_def *def, pool_ball_state *s, int n, double dt, pool_link_workspace *ws,
+                           const pool_allocator *alloc, pool_link_step_stats *stats) {
+	const pool_link_options options = POOL_LINK_OPTIONS_DEFAULT;
+	return pool_link_step_with(def, s, n, dt, &options, ws, alloc, stats);
+}
