@@ -3,10 +3,8 @@
 
 #include "ball_friction.h"
 #include "collision.h"
-#include "contact_floor.h"
 #include "handlers.h"
 #include "motion.h"
-#include "sim_internal.h"
 #include "vec3.h"
 
 int pool_handle_ball_ball(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count) {
@@ -19,5 +17,5 @@ int pool_handle_ball_ball(const pool_event_context *ctx, pool_event_type type, p
 	pool_collide(&s[0], p->ball_radius, p->ball_mass, &s[1], p->ball_radius, 1.0, n, p->e_ball, mu);
 	for (int k = 0; k < 2; ++k)
 		pool_motion_after_impulse(ctx->def, &s[k]);
-	return pool_contact_floor(p, &s[0], &s[1], n) ? POOL_EVENT_FLAG_FLOOR : 0;
+	return 0;
 }

@@ -33,11 +33,6 @@
 /// the acceleration decides. 1e-9 m/s over a whole shot moves a ball by nanometres.
 #define POOL_APPROACH_EPS 1e-9
 
-/// Separation speed (m/s) that every contact event leaves at least when the bodies are pressed
-/// together (see sim.c, separation floor): above the band POOL_APPROACH_EPS where acceleration
-/// decides, so the same contact is not found again at the same instant.
-#define POOL_SEPARATION_MIN (2.0 * POOL_APPROACH_EPS)
-
 /// A contact's gap polynomial and its state now.
 typedef struct pool_contact_gap {
 	double f[5];  ///< f(tau) = f[0] + f[1] tau + ... + f[4] tau^4: > 0 apart, 0 touching

@@ -4,11 +4,9 @@
 
 #include "collision.h"
 #include "cushion_mathavan.h"
-#include "contact_floor.h"
 #include "geometry.h"
 #include "handlers.h"
 #include "motion.h"
-#include "sim_internal.h"
 #include "vec3.h"
 
 int pool_handle_ball_cushion(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count) {
@@ -19,8 +17,7 @@ int pool_handle_ball_cushion(const pool_event_context *ctx, pool_event_type type
 	if (!pool_cushion_mathavan_resolve(ctx->def, &s[0], n)) // models.cushion "mathavan2010"
 		pool_collide(&s[0], p->ball_radius, p->ball_mass, NULL, p->ball_radius, 0.0, n, p->e_cushion, p->mu_cushion);
 	pool_motion_after_impulse(ctx->def, &s[0]); // airborne mode: pressed into the cloth, a hop may follow
-	const pool_vec3 nh = pool_v3_xy(n);
-	return pool_contact_floor(p, &s[0], NULL, pool_v3_scale(nh, 1.0 / pool_v3_len(nh))) ? POOL_EVENT_FLAG_FLOOR : 0;
+	return 0;
 }
 
 int pool_handle_pocket(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s, int count) {

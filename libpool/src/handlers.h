@@ -14,7 +14,7 @@ typedef struct pool_event_context {
 } pool_event_context;
 
 /// Applies event `type` to the states s[0..count) of its balls, evolved to its instant (for two
-/// balls, s[0] has the smaller id). Returns POOL_EVENT_FLAG_* bits (sim_internal.h).
+/// balls, s[0] has the smaller id). Returns 0 (the slot is kept for event flags; none is defined).
 typedef int (*pool_event_handler)(const pool_event_context *ctx, pool_event_type type, pool_ball_state *s,
                                   int count);
 

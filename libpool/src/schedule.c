@@ -20,6 +20,25 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	b->own_pocket = POOL_POCKET_NONE;
 	if (!b->active)
 		return;
+	if (s->motion == POOL_MOTION_LINKED) {
+		// The cluster's step, or a pocket first: the step's LCP holds a linked ball off the
+		// rails except inside a pocket mouth, where it crosses the contact line and falls.
+		b->own_time = sim->clusters[b->cluster].t_next;
+		b->own_kind = POOL_EVENT_LINK_STEP;
+		pool_rail rail;
+		pool_pocket pocket;
+		const double window = fmin(b->own_time, sim->def.max_time) - t;
+		if (!(window > 0.0))
+			return;
+		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &rail, &pocket);
+		if (tc < window && pocket != POOL_POCKET_NONE) {
+			b->own_time = t + tc;
+			b->own_kind = POOL_EVENT_POCKET;
+			b->own_rail = rail;
+			b->own_pocket = pocket;
+		}
+		return;
+	}
 	if (s->motion == POOL_MOTION_AIRBORNE) {
 		// In flight: landing, a nose, a pocket or the table's edge; nothing changes by itself.
 		const double window = fmax(sim->def.max_time - t, 0.0);
@@ -66,6 +85,9 @@ static void repredict(pool_sim *sim, int i, double now) {
 		for (int j = 0; j < sim->n; ++j) {
 			const pool_body *bj = &sim->body[j];
 			if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
+				continue;
+			// Contacts inside a cluster are its LCP's (link.c), not events.
+			if (bi->cluster >= 0 && bi->cluster == bj->cluster)
 				continue;
 			// A contact after the best event so far cannot be the earliest: shrink the window.
 			const double T = fmin(fmin(horizon_i, bj->own_time), best.time) - now;

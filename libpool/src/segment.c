@@ -85,6 +85,9 @@ static const pool_segment_model sliding = {1, 1, sliding_accel, sliding_end, sli
 static const pool_segment_model rolling = {1, 1, rolling_accel, rolling_end, rolling_spin};
 static const pool_segment_model airborne = {1, 0, airborne_accel, no_end, spin_kept};
 static const pool_segment_model out_of_play = {0, 0, no_accel, no_end, spin_kept};
+// Linked (a LINK cluster): over one link step the velocities are the step's LCP solution, held
+// constant (positions advance by dt v, link.c), so the segment is uniform motion.
+static const pool_segment_model linked = {1, 0, no_accel, no_end, spin_kept};
 
 const pool_segment_model *pool_segment_model_of(pool_motion motion) {
 	switch (motion) {
@@ -93,6 +96,7 @@ const pool_segment_model *pool_segment_model_of(pool_motion motion) {
 	case POOL_MOTION_SLIDING: return &sliding;
 	case POOL_MOTION_ROLLING: return &rolling;
 	case POOL_MOTION_AIRBORNE: return &airborne;
+	case POOL_MOTION_LINKED: return &linked;
 	default: return &out_of_play;
 	}
 }

@@ -25,8 +25,8 @@ typedef struct pool_segment_model {
 	void (*spin)(const pool_params *p, const pool_ball_state *s0, double tau, pool_vec3 vel, pool_vec3 *omega);
 } pool_segment_model;
 
-/// The model of a motion state (stationary, spinning, sliding, rolling, airborne; a pocketed,
-/// off-table or linked ball gets the stationary model: nothing moves by itself).
+/// The model of a motion state (stationary, spinning, sliding, rolling, airborne, linked: uniform
+/// motion over a link step; a pocketed or off-table ball gets a model where nothing moves).
 const pool_segment_model *pool_segment_model_of(pool_motion motion);
 
 /// A segment: its start state and time and what its model makes of them.

@@ -13,8 +13,9 @@
 // (POOL_STOP_MAX_EVENTS). Finite is not small: with low restitution a line of touching balls is
 // the inelastic collapse of granular gases (McNamara & Young 1992), and sequential impulses
 // converge only geometrically, slower as e falls (a 7-ball line takes 28 collisions at e = 0.5 but
-// 8,905 at e = 0.2, docs/measurements.md). LINK will solve such a cluster as one LCP; until then
-// max_events bounds the cost. Persistent (pushing) contact: contact_floor.h.
+// 8,905 at e = 0.2 without LINK, docs/measurements.md); the LINK trigger (link.h) turns a pair
+// colliding again and again into a cluster solved as one LCP per step, and max_events bounds
+// every other case. Persistent (pushing, resting) contact: link.h.
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,11 +23,11 @@
 #include "contact.h"
 #include "error.h"
 #include "handlers.h"
+#include "link.h"
 #include "models.h"
 #include "motion.h"
 #include "pool/sim.h"
 #include "schedule.h"
-#include "sim_internal.h"
 #include "vec3.h"
 #include "world.h"
 
@@ -90,6 +91,9 @@ static void clear(pool_sim *sim) {
 	sim->predicted = 0;
 	sim->started = 0;
 	sim->noop_streak = 0;
+	sim->failed = POOL_OK;
+	memset(&sim->link_stats, 0, sizeof sim->link_stats);
+	sim->link_ws.n_basis = 0; // no warm start from another shot: the same input, the same bits
 }
 
 static void set_def(pool_sim *sim, const pool_sim_def *def) {
@@ -127,8 +131,10 @@ void pool_sim_destroy(pool_sim *sim) {
 	if (!sim)
 		return;
 	const pool_allocator a = sim->alloc;
-	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work,
-	                  sim->events, sim->event_flags, sim->states, sim->state_time, sim->state_prev};
+	void *arrays[] = {sim->cur,    sim->body,        sim->keys,        sim->heap,        sim->hpos,
+	                  sim->work,   sim->clusters,    sim->link_states, sim->link_members, sim->events,
+	                  sim->states, sim->state_time,  sim->state_prev};
+	pool_link_workspace_free(&sim->link_ws, &a);
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
 		mem_free(&a, arrays[i]);
 	mem_free(&a, sim);
@@ -150,7 +156,7 @@ pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *e
 // Replaces *arrays[i] (each elems[i] bytes per element, `used` of them live) by arrays of
 // new_cap elements; all or nothing, so a failed allocation leaves the simulation intact.
 static pool_result grow_arrays(pool_sim *sim, void **arrays[], const size_t elems[], int count, int used, int new_cap) {
-	void *fresh[12];
+	void *fresh[16];
 	for (int i = 0; i < count; ++i) {
 		fresh[i] = mem_alloc(&sim->alloc, elems[i] * (size_t)new_cap);
 		if (!fresh[i]) {
@@ -179,22 +185,24 @@ static pool_result reserve_balls(pool_sim *sim, int need) {
 	if (need <= sim->cap_balls)
 		return POOL_OK;
 	int cap = next_cap(sim->cap_balls, need);
-	void **arrays[] = {(void **)&sim->cur, (void **)&sim->body, (void **)&sim->keys,
-	                   (void **)&sim->heap, (void **)&sim->hpos, (void **)&sim->work};
-	const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body), sizeof(pool_event_key),
-	                        sizeof(int), sizeof(int), sizeof(int)};
-	pool_result r = grow_arrays(sim, arrays, elems, 6, sim->n, cap);
+	void **arrays[] = {(void **)&sim->cur,      (void **)&sim->body,        (void **)&sim->keys,
+	                   (void **)&sim->heap,     (void **)&sim->hpos,        (void **)&sim->work,
+	                   (void **)&sim->clusters, (void **)&sim->link_states, (void **)&sim->link_members};
+	const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body),       sizeof(pool_event_key),
+	                        sizeof(int),             sizeof(int),             sizeof(int),
+	                        sizeof(pool_cluster),    sizeof(pool_ball_state), sizeof(int)};
+	pool_result r = grow_arrays(sim, arrays, elems, 9, sim->n, cap);
 	if (r == POOL_OK)
 		sim->cap_balls = cap;
 	return r;
 }
 
-static pool_result reserve_history(pool_sim *sim, int events, int states) {
+pool_result pool_world_reserve_history(pool_sim *sim, int events, int states) {
 	if (sim->n_events + events > sim->cap_events) {
 		int cap = next_cap(sim->cap_events, sim->n_events + events);
-		void **arrays[] = {(void **)&sim->events, (void **)&sim->event_flags};
-		const size_t elems[] = {sizeof(pool_event), 1};
-		if (grow_arrays(sim, arrays, elems, 2, sim->n_events, cap))
+		void **arrays[] = {(void **)&sim->events};
+		const size_t elems[] = {sizeof(pool_event)};
+		if (grow_arrays(sim, arrays, elems, 1, sim->n_events, cap))
 			return POOL_ERR_OUT_OF_MEMORY;
 		sim->cap_events = cap;
 	}
@@ -217,8 +225,7 @@ static void record_state(pool_sim *sim, int i, double t) {
 	sim->body[i].hist = k;
 }
 
-// Ball i's state at time t (within its current segment), in closed form from the segment start.
-static void state_now(const pool_sim *sim, int i, double t, pool_ball_state *out) {
+void pool_world_state_now(const pool_sim *sim, int i, double t, pool_ball_state *out) {
 	const pool_segment *seg = &sim->body[i].seg;
 	pool_segment_state(seg, &sim->def.params, t - seg->t0, out);
 }
@@ -277,7 +284,7 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
 			                      (int)sim->cur[j].id, 2.0 * R - d);
 	}
-	if (reserve_balls(sim, idx + 1) || reserve_history(sim, 0, 1))
+	if (reserve_balls(sim, idx + 1) || pool_world_reserve_history(sim, 0, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "balls[%d]: out of memory", idx);
 	pool_ball_state s = *ball;
 	if (pool_world_planar(sim))
@@ -290,15 +297,18 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	b->active = 1;
 	b->hist = -1;
 	b->partner = -1;
+	b->cluster = -1;
+	for (int k = 0; k < POOL_LINK_PARTNERS; ++k)
+		b->streak[k].partner = -1;
+	sim->clusters[idx].active = 0;
 	pool_schedule_begin_segment(sim, idx, &s, sim->time);
 	record_state(sim, idx, sim->time);
 	sim->predicted = 0;
 	return pool_error_ok(error);
 }
 
-static void push_event(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
-                       const int *inv, int m) {
-	sim->event_flags[sim->n_events] = 0;
+void pool_world_record_event(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
+                             const int *inv, int m) {
 	pool_event *e = &sim->events[sim->n_events++];
 	memset(e, 0, sizeof *e); // padding too: event lists compare bit for bit
 	e->time = t;
@@ -323,10 +333,10 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 		return r;
 	const double now = isfinite(sim->processed) ? fmax(sim->processed, sim->time) : sim->time;
 	pool_ball_state s;
-	state_now(sim, i, now, &s);
+	pool_world_state_now(sim, i, now, &s);
 	if (!sim->body[i].active || (s.motion != POOL_MOTION_STATIONARY && s.motion != POOL_MOTION_SPINNING))
 		return pool_error_set(error, POOL_ERR_STATE, "strike.ball: ball %d is not at rest on the cloth", (int)ball_id);
-	if (reserve_history(sim, 1, 1))
+	if (pool_world_reserve_history(sim, 1, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "strike: out of memory");
 	s.vel = v;
 	s.omega = pool_v3_add(s.omega, w);
@@ -334,7 +344,7 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 	// ball into the cloth (v_z < 0): a ball_table impact at this very instant (jump and massé).
 	pool_motion_after_impulse(&sim->def, &s);
 	pool_schedule_begin_segment(sim, i, &s, now);
-	push_event(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, &i, 1);
+	pool_world_record_event(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, &i, 1);
 	sim->time = now;
 	sim->processed = now;
 	sim->started = 1;
@@ -347,12 +357,45 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 /// Consecutive no-op contacts (grazes) skipped before one is recorded anyway.
 #define NOOP_LIMIT 8
 
+// Two touching balls s[0..2) (states at the contact) pressed together: their normal approach
+// acceleration, the difference of their accelerations along the normal less the curvature of
+// their relative path (|v_t|^2 / 2R parts them), is positive.
+static int pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
+	const pool_params *p = &sim->def.params;
+	const pool_vec3 d = pool_v3_sub(s[0].pos, s[1].pos);
+	const double dist = pool_v3_len(d);
+	const pool_vec3 n = pool_v3_scale(d, 1.0 / dist);
+	const pool_vec3 dv = pool_v3_sub(s[0].vel, s[1].vel);
+	const pool_vec3 da = pool_v3_sub(pool_motion_accel(p, &s[0]), pool_motion_accel(p, &s[1]));
+	const double vn = pool_v3_dot(n, dv);
+	const double approach_accel = -pool_v3_dot(n, da) - (pool_v3_dot(dv, dv) - vn * vn) / dist;
+	return approach_accel > 0.0;
+}
+
+// After a recorded collision: the LINK trigger (link.h), which may start a cluster at `now`.
+static pool_result note_collision(pool_sim *sim, pool_event_type type, const int *inv, pool_rail rail, double now) {
+	if (type == POOL_EVENT_BALL_BALL) {
+		const int a = pool_link_note_collision(sim, inv[0], inv[1], now);
+		const int b = pool_link_note_collision(sim, inv[1], inv[0], now);
+		return a || b ? pool_link_begin(sim, inv, 2, now) : POOL_OK;
+	}
+	if (type == POOL_EVENT_BALL_CUSHION && pool_link_note_collision(sim, inv[0], -2 - (int)rail, now))
+		return pool_link_begin(sim, inv, 1, now);
+	return POOL_OK;
+}
+
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.
-static void process(pool_sim *sim, int slot) {
+static pool_result process(pool_sim *sim, int slot) {
 	const pool_event_key key = sim->keys[slot];
 	const double now = key.time;
 	pool_body *b = &sim->body[slot];
 	const pool_event_type type = (pool_event_type)key.kind;
+	if (type == POOL_EVENT_LINK_STEP) {
+		const pool_result r = pool_link_step_event(sim, slot, now);
+		sim->time = now;
+		sim->processed = now;
+		return r;
+	}
 	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE};
 	if (type == POOL_EVENT_BALL_CUSHION || type == POOL_EVENT_POCKET)
 		ctx.rail = b->own_rail;
@@ -372,7 +415,7 @@ static void process(pool_sim *sim, int slot) {
 	}
 	pool_ball_state s[2], before[2];
 	for (int k = 0; k < count; ++k) {
-		state_now(sim, inv[k], now, &s[k]);
+		pool_world_state_now(sim, inv[k], now, &s[k]);
 		before[k] = s[k];
 	}
 	const pool_event_handler handle = pool_event_handler_for(type);
@@ -383,30 +426,56 @@ static void process(pool_sim *sim, int slot) {
 	// hit" must not be a ball that was never touched) and the pair is predicted again from here,
 	// where the contact rule sees it parting. A run of such no-ops at one instant (never seen)
 	// would be recorded after NOOP_LIMIT, so the shot still makes progress to max_events.
-	if (type == POOL_EVENT_BALL_BALL && flags == 0 && sim->noop_streak < NOOP_LIMIT &&
-	    memcmp(s, before, sizeof s) == 0) {
+	const int unchanged = flags == 0 && memcmp(s, before, sizeof s[0] * (size_t)count) == 0;
+	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
+	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
+	// persistent contact by definition: LINK takes it at once (no event of its own is recorded).
+	if (unchanged && (type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pressed_pair(sim, s))) &&
+	    !(sim->body[inv[0]].cluster >= 0 && (count == 1 || sim->body[inv[0]].cluster == sim->body[inv[1]].cluster))) {
+		sim->noop_streak = 0;
+		sim->time = now;
+		sim->processed = now;
+		return pool_link_begin(sim, inv, count, now);
+	}
+	if (type == POOL_EVENT_BALL_BALL && unchanged && sim->noop_streak < NOOP_LIMIT) {
 		sim->noop_streak++;
 		sim->time = now;
 		sim->processed = now;
 		pool_schedule_after_event(sim, inv, count, now);
-		return;
+		return POOL_OK;
 	}
 	sim->noop_streak = 0;
-	if (s[0].motion == POOL_MOTION_POCKETED || s[0].motion == POOL_MOTION_OFF_TABLE)
+	const int out_of_play = s[0].motion == POOL_MOTION_POCKETED || s[0].motion == POOL_MOTION_OFF_TABLE;
+	if (out_of_play)
 		b->active = 0;
+	// A cluster's ball hit from outside stays linked, with the impulse's velocities.
+	for (int k = 0; k < count; ++k)
+		if (sim->body[inv[k]].cluster >= 0 && sim->body[inv[k]].active)
+			s[k].motion = POOL_MOTION_LINKED;
 	for (int k = 0; k < count; ++k)
 		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
 	// A pocket event names its pocket, not the rail whose mouth it was.
-	push_event(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
-	sim->event_flags[sim->n_events - 1] |= (unsigned char)flags;
+	pool_world_record_event(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
+	// The cluster of a ball the event changed steps now: no event inside a step is skipped.
+	for (int k = 0; k < count; ++k) {
+		if (sim->body[inv[k]].cluster < 0)
+			continue;
+		if (sim->body[inv[k]].active)
+			pool_link_touched(sim, inv[k], now);
+		else
+			pool_link_left(sim, inv[k], now);
+	}
+	return note_collision(sim, type, inv, ctx.rail, now);
 }
 
 int pool_sim_step(pool_sim *sim) {
 	if (!sim)
 		return POOL_ERR_INVALID_ARGUMENT;
+	if (sim->failed)
+		return sim->failed;
 	if (sim->stop != POOL_STOP_NONE)
 		return 0;
 	if (!sim->predicted)
@@ -428,10 +497,21 @@ int pool_sim_step(pool_sim *sim) {
 		sim->stop = POOL_STOP_MAX_EVENTS;
 		return 0;
 	}
-	if (reserve_history(sim, 1, 2))
+	// Room for the event and a LINK event after it (every ball's state), so nothing past this
+	// point runs out of memory but a link step's LCP workspace.
+	if (pool_world_reserve_history(sim, 2, 2 + sim->n))
 		return POOL_ERR_OUT_OF_MEMORY;
 	sim->started = 1;
-	process(sim, pool_event_queue_top(&sim->queue));
+	// A failed link step (its LCP unsolved, or out of memory) ends the shot with that error:
+	// never silently wrong velocities.
+	const pool_result r = process(sim, pool_event_queue_top(&sim->queue));
+	if (r) {
+		// Out of memory leaves the step undone (it runs again once memory is back); a failed
+		// solve is final.
+		if (r != POOL_ERR_OUT_OF_MEMORY)
+			sim->failed = r;
+		return r;
+	}
 	return 1;
 }
 
@@ -505,6 +585,3 @@ const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_eve
 	return &sim->states[event->first_state];
 }
 
-int pool_sim_event_flags(const pool_sim *sim, int index) {
-	return sim && index >= 0 && index < sim->n_events ? sim->event_flags[index] : 0;
-}

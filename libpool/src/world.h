@@ -4,15 +4,31 @@
 //   schedule.c   the event heap over bodies and the predictions that fill it;
 //   segment.c    the closed-form motion of each state (one polynomial per segment);
 //   handlers.c   one small function per event kind, each in the file of its physics
-//                (motion.c, ball_ball.c, cushion.c; the planar stand-in contact_floor.c);
+//                (motion.c, ball_ball.c, cushion.c, cloth.c);
+//   link.c       LINK clusters: the trigger, forming, stepping and dissolving a cluster, whose
+//                balls are one body of the schedule (one step event, uniform motion over the
+//                step), each step one LCP (link_step.c, lemke.c);
 //   geometry.c   the table: contact lines, pocket mouths, nose normals.
-// A body is one ball today; a LINK cluster will be one body of several balls.
 #ifndef POOL_WORLD_H
 #define POOL_WORLD_H
 
 #include "event_queue.h"
+#include "link_step.h"
+#include "pool/link.h"
 #include "pool/sim.h"
 #include "segment.h"
+
+/// Partners a ball remembers for the LINK trigger: a collision streak per recent partner.
+#define POOL_LINK_PARTNERS 4
+
+/// Collisions of a ball with one partner (a ball index, or -2 - rail for a cushion) since t0.
+typedef struct pool_contact_streak {
+	int partner;   ///< -1: unused
+	int count;     ///< at distinct instants since t0
+	int same;      ///< at the instant t_last
+	double t0;     ///< s, the first collision counted
+	double t_last; ///< s, the last one
+} pool_contact_streak;
 
 /// A ball's runtime record: its current segment, its own next event and its place in history.
 typedef struct pool_body {
@@ -24,7 +40,19 @@ typedef struct pool_body {
 	pool_rail own_rail;       ///< for a cushion or pocket event
 	pool_pocket own_pocket;   ///< for a pocket event
 	int partner;              ///< other body of the pending event in the queue slot, or -1
+	int cluster;              ///< LINK cluster the ball belongs to, or -1
+	pool_contact_streak streak[POOL_LINK_PARTNERS]; ///< recent collisions, for the LINK trigger
 } pool_body;
+
+/// A LINK cluster: its balls are the bodies whose `cluster` is its index; they share one step
+/// event, at t_next.
+typedef struct pool_cluster {
+	int active;    ///< in use
+	double t_next; ///< s, the cluster's next step (INFINITY while it sleeps)
+	int steps;     ///< steps taken
+	int quiet;     ///< the last step found the balls apart, or touching on the cloth without
+	               ///< pressing: the cluster dissolves at its next step instead of solving again
+} pool_cluster;
 
 struct pool_sim {
 	pool_sim_def def;
@@ -38,8 +66,14 @@ struct pool_sim {
 	int *heap, *hpos, *work;
 	pool_event_queue queue;
 
+	pool_cluster *clusters;         // cap_balls of them: at most one per ball
+	pool_ball_state *link_states;   // scratch of a link step, cap_balls
+	int *link_members;              // scratch of a link step, cap_balls
+	pool_link_workspace link_ws;    // the steps' LCP memory, reused
+	pool_link_stats link_stats;     // this shot's
+	pool_result failed;             // a link step's solve failed: the shot cannot go on
+
 	pool_event *events;
-	unsigned char *event_flags; // POOL_EVENT_FLAG_*
 	int n_events, cap_events;
 	pool_ball_state *states; // history: initial states, then every event's after-states
 	double *state_time;
@@ -53,6 +87,16 @@ struct pool_sim {
 	int started;   // an event was recorded: balls can no longer be added
 	int noop_streak; // contacts found to be grazes (no impulse) in a row, not recorded
 };
+
+/// Ball i's state at time t, within its current segment (closed form from the segment start).
+void pool_world_state_now(const pool_sim *sim, int i, double t, pool_ball_state *out);
+
+/// Makes room for `events` more events with `states` more states in the history.
+pool_result pool_world_reserve_history(pool_sim *sim, int events, int states);
+
+/// Records an event at t of the balls inv[0..m) with their current segment-start states.
+void pool_world_record_event(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
+                             const int *inv, int m);
 
 /// Planar mode (airborne off): every ball stays on the cloth, v_z is dropped after each impulse.
 static inline int pool_world_planar(const pool_sim *sim) { return !sim->def.airborne; }

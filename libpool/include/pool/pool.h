@@ -5,6 +5,7 @@
 #include "pool/base.h"
 #include "pool/ball.h"
 #include "pool/event.h"
+#include "pool/link.h"
 #include "pool/quartic.h"
 #include "pool/rack.h"
 #include "pool/sim.h"

@@ -1,0 +1,56 @@
+// libpool: LINK, persistent contact as a cluster advanced by LCP steps (PHYSICS.md "LINK";
+// docs/library.md "Persistent contact").
+#ifndef POOL_LINK_H
+#define POOL_LINK_H
+
+#include "pool/sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// s, the length of a link step (a step ends earlier when an event from outside reaches one of
+/// the cluster's balls). Contacts inside a cluster are resolved to first order in it: 1 ms
+/// keeps a pushed ball's path within a millimetre of the limit (docs/measurements.md) at a few
+/// hundred steps per second of contact.
+#define POOL_LINK_STEP_TIME 1e-3
+
+/// Collisions of one pair (two balls, or a ball and a rail), at distinct instants within
+/// POOL_LINK_TRIGGER_WINDOW, that make the pair persistent contact and start a cluster. Exact
+/// impulses on a pushed contact form a Zeno series (ever closer collisions); a genuine second
+/// collision (a follow shot hitting the object ball again) comes tenths of a second later.
+#define POOL_LINK_TRIGGER_COLLISIONS 4
+/// Collisions of one pair at one instant that start a cluster: the inelastic collapse of a
+/// low-restitution line (thousands of same-instant impulses). The sequential impulses of frozen
+/// breaks hit a pair at most 5 times at the instant of impact (8- and 9-ball racks, e_ball 0.92
+/// to 0.98, 2 to 12 m/s, docs/measurements.md), so they never trigger it.
+#define POOL_LINK_TRIGGER_SAME_INSTANT 12
+/// s, the window of POOL_LINK_TRIGGER_COLLISIONS.
+#define POOL_LINK_TRIGGER_WINDOW 0.05
+
+/// m/s: a cluster on the cloth whose contacts press less than this over a step (normal impulse
+/// / ball mass) dissolves: the closed forms take over (spheres rolling together in contact never
+/// stop by themselves, and need no contact force to stay together). A cluster resting above the
+/// cloth (a ball on two others) sleeps, taking no more steps until something hits it, once every
+/// ball moves and spins (|w| R) slower than this.
+#define POOL_LINK_REST_SPEED 1e-5
+
+/// What the LINK steps of a shot did.
+typedef struct pool_link_stats {
+	int clusters;         ///< clusters formed (link_begin events)
+	int steps;            ///< LCP solves (link_step and link_end events)
+	long long pivots;     ///< Lemke pivots, all solves
+	int warm_solves;      ///< solves answered by the previous step's basis
+	int max_balls;        ///< largest cluster
+	int max_contacts;     ///< largest LCP, in contacts
+	double max_residual;  ///< largest relative complementarity residual of a solve
+} pool_link_stats;
+
+/// The LINK statistics of the current shot (zero when no cluster formed).
+POOL_API pool_result pool_sim_link_stats(const pool_sim *sim, pool_link_stats *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

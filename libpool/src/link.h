@@ -1,0 +1,34 @@
+// LINK clusters in the world (PHYSICS.md "LINK"). Where pairwise impulses break down (a ball
+// pushing another, resting on two, pinned to a rail), the pair's collision history triggers a
+// cluster: the linker and every ball touching it, transitively. The cluster is one body of the
+// schedule: its balls share one step event and, over a step, move uniformly with the velocities
+// of the step's LCP (link_step.h), so the exact state at any instant stays known and the balls
+// outside keep predicting contacts against them. A step ends early when an event from outside
+// reaches one of its balls (the cluster steps again at that instant). A cluster dissolves when its
+// balls no longer touch, or when every contact is at rest on the cloth; its balls resume their
+// closed-form states.
+#ifndef POOL_LINK_INTERNAL_H
+#define POOL_LINK_INTERNAL_H
+
+#include "world.h"
+
+/// Notes a recorded collision of ball i with `partner` (a ball index, or -2 - rail) at t and
+/// returns 1 when it completes the trigger (POOL_LINK_TRIGGER_COLLISIONS within the window).
+int pool_link_note_collision(pool_sim *sim, int i, int partner, double t);
+
+/// Forms a cluster at t around the balls seed[0..m) (merging every cluster they touch) and
+/// records link_begin; its first step is at t.
+pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t);
+
+/// Processes the step event of ball i's cluster at t: one LCP step of the whole cluster, then
+/// link_step (or link_end when it dissolves).
+pool_result pool_link_step_event(pool_sim *sim, int i, double t);
+
+/// After an event from outside changed member i's state at t (already its new segment start):
+/// keeps it linked and makes its cluster step at t, so no event inside a step is skipped.
+void pool_link_touched(pool_sim *sim, int i, double t);
+
+/// Member i left play (pocketed, off the table) at t: it leaves its cluster, which steps at t.
+void pool_link_left(pool_sim *sim, int i, double t);
+
+#endif

@@ -1,0 +1,369 @@
+// LINK in whole shots (PHYSICS.md "LINK", issue 11's scenes): where pairwise impulses break down
+// (a ball pushing another, pinned to a rail by its spin, resting on two, landing on a resting
+// ball, a low-restitution line) the shot must end bounded, without interpenetration, with
+// energy never increasing beyond the step's stated tolerance, and where a closed form exists
+// (a pushed pair sliding together, a ball pinned to a rail) it must follow it.
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pool/pool.h"
+#include "link_step.h"
+#include "vec3.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define MAX_BALLS 16
+#define SAMPLES_PER_GAP 4
+/// m, the interpenetration (and rail penetration) a scene may show (issue 11: 1e-6 m).
+#define MAX_PENETRATION 1e-6
+/// J, rounding of energy sums of a few joules.
+#define ENERGY_ROUNDING 1e-12
+
+typedef struct scene_report {
+	double overlap;  // m, worst interpenetration of two balls, sampled between events
+	double outside;  // m, worst centre distance beyond a cushion contact line (balls in play)
+	double gain;     // J, worst rise of the total energy (kinetic + potential) between samples
+	double total_gain; // J, final energy minus initial (worst over samples)
+	int events, link_begin, link_step, link_end;
+	pool_stop_reason stop;
+	double end_time;
+} scene_report;
+
+static pool_sim *make_sim(const pool_sim_def *def) {
+	pool_sim *sim = NULL;
+	pool_error err;
+	if (pool_sim_create(def, &sim, &err) != POOL_OK)
+		fail_msg("create: %s", err.message);
+	return sim;
+}
+
+static pool_ball_state ball(int32_t id, double x, double y, double z) {
+	pool_ball_state b;
+	memset(&b, 0, sizeof b);
+	b.id = id;
+	b.pos = pool_v3(x, y, z);
+	return b;
+}
+
+static void add(pool_sim *sim, const pool_ball_state *b) {
+	pool_error err;
+	if (pool_sim_add_ball(sim, b, &err) != POOL_OK)
+		fail_msg("add ball %d: %s", (int)b->id, err.message);
+}
+
+static double total_energy(const pool_params *p, const pool_ball_state *s, int n) {
+	double e = 0.0;
+	for (int i = 0; i < n; ++i) {
+		if (s[i].motion == POOL_MOTION_POCKETED || s[i].motion == POOL_MOTION_OFF_TABLE)
+			continue;
+		const double m = p->ball_mass, R = p->ball_radius;
+		e += 0.5 * m * pool_v3_dot(s[i].vel, s[i].vel) + 0.2 * m * R * R * pool_v3_dot(s[i].omega, s[i].omega) +
+		     m * p->g * (s[i].pos.z - R);
+	}
+	return e;
+}
+
+// Geometry and energy at instant t.
+static void sample(const pool_sim *sim, const pool_sim_def *def, double t, scene_report *r, double *energy) {
+	pool_ball_state s[MAX_BALLS];
+	const int n = pool_sim_ball_count(sim);
+	assert_int_equal(pool_sim_state_at(sim, t, s), POOL_OK);
+	const double R = def->params.ball_radius, L = def->table.length, W = def->table.width;
+	const double dc = pool_table_contact_distance(&def->table, R);
+	for (int i = 0; i < n; ++i) {
+		if (s[i].motion == POOL_MOTION_POCKETED || s[i].motion == POOL_MOTION_OFF_TABLE)
+			continue;
+		if (s[i].pos.z < R + 1e-3) { // on (or near) the cloth: the contact lines bound it
+			const double out =
+			    fmax(fmax(dc - s[i].pos.x, s[i].pos.x - (L - dc)), fmax(dc - s[i].pos.y, s[i].pos.y - (W - dc)));
+			r->outside = fmax(r->outside, out);
+		}
+		for (int j = i + 1; j < n; ++j)
+			if (s[j].motion != POOL_MOTION_POCKETED && s[j].motion != POOL_MOTION_OFF_TABLE)
+				r->overlap = fmax(r->overlap, 2.0 * R - pool_v3_len(pool_v3_sub(s[i].pos, s[j].pos)));
+	}
+	*energy = total_energy(&def->params, s, n);
+}
+
+static int is_link(pool_event_type type) {
+	return type == POOL_EVENT_LINK_BEGIN || type == POOL_EVENT_LINK_STEP || type == POOL_EVENT_LINK_END;
+}
+
+// Runs the shot to its end, sampling just before every event and, after an event that starts
+// closed-form motion, SAMPLES_PER_GAP instants between. Energy is compared just before events:
+// a link step is semi-implicit Euler (gravity enters the velocity at the step's start, the
+// position follows over the step), so the kinetic energy it gains at its start is the potential
+// energy its motion releases by its end, and only the end is comparable (free fall then loses
+// m g^2 dt^2 / 2 per step, never gains).
+static scene_report run_scene(pool_sim *sim, const pool_sim_def *def) {
+	scene_report r;
+	memset(&r, 0, sizeof r);
+	r.overlap = r.outside = r.gain = r.total_gain = -INFINITY;
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int count = 0;
+	const pool_event *ev = pool_sim_events(sim, &count);
+	r.events = count;
+	r.stop = pool_sim_stop_reason(sim);
+	r.end_time = pool_sim_end_time(sim);
+	double e0, prev;
+	sample(sim, def, 0.0, &r, &e0);
+	prev = e0;
+	double t_prev = 0.0;
+	int prev_link = 0;
+	for (int k = 0; k <= count; ++k) {
+		const double t = k < count ? ev[k].time : r.end_time;
+		if (k < count) {
+			r.link_begin += ev[k].type == POOL_EVENT_LINK_BEGIN;
+			r.link_step += ev[k].type == POOL_EVENT_LINK_STEP;
+			r.link_end += ev[k].type == POOL_EVENT_LINK_END;
+		}
+		if (t > t_prev) {
+			const int samples = prev_link ? 1 : SAMPLES_PER_GAP;
+			for (int q = 1; q <= samples; ++q) {
+				// The last sample just before the event (the state_at of t itself is after it).
+				const double tq = q < samples ? t_prev + (t - t_prev) * q / samples : t - 1e-9 * (t - t_prev);
+				double e;
+				sample(sim, def, tq, &r, &e);
+				r.gain = fmax(r.gain, e - prev);
+				r.total_gain = fmax(r.total_gain, e - e0);
+				prev = e;
+			}
+		}
+		if (k < count)
+			prev_link = is_link(ev[k].type) && ev[k].type != POOL_EVENT_LINK_END;
+		t_prev = t;
+	}
+	return r;
+}
+
+static void print_report(const char *what, const scene_report *r) {
+	printf("%-28s events %6d  link begin/step/end %d/%d/%d  overlap %.2e m  outside %.2e m  energy rise %.2e J "
+	       "(total %.2e J)  stop %d at %.3f s\n",
+	       what, r->events, r->link_begin, r->link_step, r->link_end, r->overlap, r->outside, r->gain, r->total_gain,
+	       (int)r->stop, r->end_time);
+}
+
+// The invariants every scene holds. `step_gain` is the energy a step may add (J, 0 in planar
+// mode: velocity-level LCP steps only dissipate there; with gravity, semi-implicit Euler's
+// m g^2 dt^2 / 2 per airborne ball per step, which does not accumulate).
+static void check_invariants(const char *what, const scene_report *r, double step_gain, double total_gain) {
+	print_report(what, r);
+	if (r->stop != POOL_STOP_REST && r->stop != POOL_STOP_MAX_TIME)
+		fail_msg("%s: the shot did not end (stop reason %d after %d events)", what, (int)r->stop, r->events);
+	if (r->overlap > MAX_PENETRATION)
+		fail_msg("%s: balls interpenetrate by %.3g m", what, r->overlap);
+	if (r->outside > MAX_PENETRATION)
+		fail_msg("%s: a ball is %.3g m beyond a cushion contact line", what, r->outside);
+	if (r->gain > step_gain + ENERGY_ROUNDING)
+		fail_msg("%s: energy rose by %.3g J between two instants (allowed %.3g J)", what, r->gain, step_gain);
+	if (r->total_gain > total_gain + ENERGY_ROUNDING)
+		fail_msg("%s: energy rose by %.3g J over the shot (allowed %.3g J)", what, r->total_gain, total_gain);
+}
+
+static double gravity_step_gain(const pool_params *p, int balls) {
+	return balls * 0.5 * p->ball_mass * p->g * p->g * POOL_LINK_STEP_TIME * POOL_LINK_STEP_TIME;
+}
+
+// A cue ball with topspin touching an object ball, both sliding at v along x, mu_ball = 0: the
+// cloth pushes the cue ball forward (its spin outruns its speed) and holds the object ball back
+// by the same mu_slide m g, so the contact force is mu_slide m g and the pair moves at v,
+// exactly, until the object ball rolls at t1 = 2 v / (5 mu_slide g) (its slip v shrinks at
+// 5 mu_slide g / 2). Friction along x is one of the cone's directions: no polygon error.
+static void test_pushed_pair_closed_form(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.params.mu_ball = 0.0;
+	const pool_params *p = &def.params;
+	const double R = p->ball_radius, v = 0.5;
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
+	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
+	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
+	add(sim, &cue);
+	add(sim, &obj);
+	const double t1 = 2.0 * v / (5.0 * p->mu_slide * p->g);
+	assert_int_equal(pool_sim_run_until(sim, 0.9 * t1), POOL_OK);
+	pool_ball_state s[2];
+	assert_int_equal(pool_sim_state_at(sim, 0.9 * t1, s), POOL_OK);
+	pool_link_stats ls;
+	assert_int_equal(pool_sim_link_stats(sim, &ls), POOL_OK);
+	printf("pushed pair at 0.9 t1 = %.4f s: v %.6f %.6f m/s (closed form %.6f), x %.6f %.6f m (closed form %.6f "
+	       "%.6f), %d clusters, %d steps\n",
+	       0.9 * t1, s[0].vel.x, s[1].vel.x, v, s[0].pos.x, s[1].pos.x, 0.6 + v * 0.9 * t1,
+	       0.6 + 2.0 * R + v * 0.9 * t1, ls.clusters, ls.steps);
+	assert_true(ls.clusters >= 1);
+	assert_int_equal(s[0].motion, POOL_MOTION_LINKED);
+	// Until LINK forms (after POOL_LINK_TRIGGER_COLLISIONS contacts) the pair runs on exact
+	// impulses; the paths may differ from the closed form by what those few contacts move.
+	for (int k = 0; k < 2; ++k) {
+		assert_true(fabs(s[k].vel.x - v) < 1e-3 * v);
+		assert_true(fabs(s[k].pos.x - (0.6 + 2.0 * R * k + v * 0.9 * t1)) < 1e-4);
+	}
+	const double gap = pool_v3_len(pool_v3_sub(s[1].pos, s[0].pos)) - 2.0 * R;
+	assert_true(fabs(gap) < MAX_PENETRATION);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("pushed pair", &r, 0.0, 0.0);
+	pool_sim_destroy(sim);
+}
+
+// A ball at rest touching the south rail, spinning about x so that the cloth's friction drives it
+// into the rail (slip +y, friction -y), a frictionless cushion: it stays pinned while the cloth's
+// friction mu N_c takes the spin. The rail's force N_r along the nose normal (horizontal dc / R,
+// downward (h - R) / R) balances the friction: N_r dc / R = mu N_c, N_c = m g + N_r (h - R) / R,
+// so N_c = m g dc / (dc - mu (h - R)) and the spin stops at T = (2/5) m R w0 / (mu N_c). The
+// polyhedral cone's friction is at least cos(pi / eta) of the circular cone's, so T is read with
+// that factor plus two steps.
+static void test_pinned_to_rail_closed_form(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.params.mu_cushion = 0.0;
+	const pool_params *p = &def.params;
+	const double R = p->ball_radius, m = p->ball_mass, mu = p->mu_slide, h = def.table.cushion_height;
+	const double dc = pool_table_contact_distance(&def.table, R);
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state b = ball(0, 1.0, dc, R);
+	const double w0 = 40.0;
+	b.omega = pool_v3(w0, 0.0, 0.0);
+	add(sim, &b);
+	scene_report r = run_scene(sim, &def);
+	const double Nc = m * p->g * dc / (dc - mu * (h - R));
+	const double T = 0.4 * m * R * w0 / (mu * Nc);
+	int count = 0;
+	const pool_event *ev = pool_sim_events(sim, &count);
+	double t_end = -1.0;
+	for (int k = 0; k < count; ++k)
+		if (ev[k].type == POOL_EVENT_LINK_END)
+			t_end = ev[k].time;
+	pool_ball_state s;
+	assert_int_equal(pool_sim_state_at(sim, pool_sim_end_time(sim), &s), POOL_OK);
+	printf("pinned to a rail: link_end at %.4f s, closed form %.4f s (%.2f %%), final x %.6f y %.6f m\n", t_end, T,
+	       100.0 * (t_end - T) / T, s.pos.x, s.pos.y);
+	check_invariants("pinned to a rail", &r, 0.0, 0.0);
+	assert_true(r.link_begin >= 1);
+	const double slack = 2.0 * POOL_LINK_STEP_TIME;
+	assert_true(t_end > T - slack && t_end < T / cos(M_PI / POOL_LINK_ETA) + slack);
+	assert_true(fabs(s.pos.y - dc) < MAX_PENETRATION + 1e-5);
+	pool_sim_destroy(sim);
+}
+
+// A ball placed on two touching balls (airborne motion): whatever it does (rest, or push them
+// apart and come down), the shot ends bounded, nothing interpenetrates, energy never rises
+// beyond the gravity term of the steps.
+static void test_ball_on_two(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.airborne = true;
+	def.max_time = 10.0;
+	const double R = def.params.ball_radius;
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state a = ball(0, 1.0, 0.6, R), c = ball(1, 1.0 + 2.0 * R, 0.6, R);
+	pool_ball_state top = ball(2, 1.0 + R, 0.6, R + sqrt(3.0) * R + 1e-10);
+	add(sim, &a);
+	add(sim, &c);
+	add(sim, &top);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("ball on two", &r, gravity_step_gain(&def.params, 3), 3 * gravity_step_gain(&def.params, 3));
+	assert_true(r.link_begin >= 1);
+	pool_sim_destroy(sim);
+}
+
+// The 2012 work's example: a jumped ball landing on a resting ball and sliding off it.
+static void test_landing_on_a_ball(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.airborne = true;
+	def.max_time = 20.0;
+	const double R = def.params.ball_radius;
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state rest = ball(10, 1.5, 0.6, R);
+	// Falls from 0.1 m above the resting ball onto its top, 5 mm off its axis, drifting at 0.05 m/s.
+	pool_ball_state jumper = ball(11, 1.495, 0.6, R + 2.0 * R + 0.1);
+	jumper.vel = pool_v3(0.05, 0.0, 0.0);
+	add(sim, &rest);
+	add(sim, &jumper);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("landing on a ball", &r, gravity_step_gain(&def.params, 2), 3 * gravity_step_gain(&def.params, 2));
+	pool_sim_destroy(sim);
+}
+
+// A cue ball with follow driven into a line of frozen balls (planar): the cue ball keeps pushing.
+static void test_follow_into_a_line(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	const double R = def.params.ball_radius;
+	pool_sim *sim = make_sim(&def);
+	add(sim, &(pool_ball_state){0, POOL_MOTION_STATIONARY, {0.5, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+	for (int k = 0; k < 4; ++k)
+		add(sim, &(pool_ball_state){1 + k, POOL_MOTION_STATIONARY, {1.2 + 2.0 * R * k, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+	pool_strike st = {1.0, 0.0, 0.0, 0.0, 0.5 * R};
+	pool_error err;
+	assert_int_equal(pool_sim_strike(sim, 0, &st, &err), POOL_OK);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("follow into a line", &r, 0.0, 0.0);
+	pool_sim_destroy(sim);
+}
+
+// Six frozen balls at e_ball = 0.2, a stun cue ball at 3 m/s: the inelastic collapse took 8,905
+// same-instant collisions and 21,019 events without LINK (docs/measurements.md).
+static void test_low_restitution_line(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.params.e_ball = 0.2;
+	const double R = def.params.ball_radius;
+	pool_sim *sim = make_sim(&def);
+	add(sim, &(pool_ball_state){0, POOL_MOTION_STATIONARY, {0.5, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+	for (int k = 0; k < 6; ++k)
+		add(sim, &(pool_ball_state){1 + k, POOL_MOTION_STATIONARY, {1.0 + 2.0 * R * k, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+	pool_strike st = {3.0, 0.0, 0.0, 0.0, 0.0};
+	pool_error err;
+	assert_int_equal(pool_sim_strike(sim, 0, &st, &err), POOL_OK);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("low-restitution line", &r, 0.0, 0.0);
+	assert_true(r.link_begin >= 1);
+	pool_sim_destroy(sim);
+}
+
+// The same input twice gives the same events bit for bit, LINK steps included.
+static void test_deterministic(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.airborne = true;
+	def.max_time = 5.0;
+	const double R = def.params.ball_radius;
+	pool_sim *sims[2];
+	for (int k = 0; k < 2; ++k) {
+		sims[k] = make_sim(&def);
+		add(sims[k], &(pool_ball_state){10, POOL_MOTION_STATIONARY, {1.5, 0.6, R}, {0, 0, 0}, {0, 0, 0}});
+		add(sims[k], &(pool_ball_state){11, POOL_MOTION_AIRBORNE, {1.495, 0.6, 3 * R + 0.1}, {0.05, 0, 0}, {0, 0, 0}});
+		assert_int_equal(pool_sim_run(sims[k]), POOL_OK);
+	}
+	int n0 = 0, n1 = 0;
+	const pool_event *e0 = pool_sim_events(sims[0], &n0), *e1 = pool_sim_events(sims[1], &n1);
+	assert_int_equal(n0, n1);
+	assert_memory_equal(e0, e1, sizeof *e0 * (size_t)n0);
+	for (int k = 0; k < n0; ++k)
+		assert_memory_equal(pool_sim_event_states(sims[0], &e0[k]), pool_sim_event_states(sims[1], &e1[k]),
+		                    sizeof(pool_ball_state) * (size_t)e0[k].ball_count);
+	for (int k = 0; k < 2; ++k)
+		pool_sim_destroy(sims[k]);
+}
+
+int main(void) {
+	const struct CMUnitTest tests[] = {
+	    cmocka_unit_test(test_pushed_pair_closed_form), cmocka_unit_test(test_pinned_to_rail_closed_form),
+	    cmocka_unit_test(test_ball_on_two),             cmocka_unit_test(test_landing_on_a_ball),
+	    cmocka_unit_test(test_follow_into_a_line),      cmocka_unit_test(test_low_restitution_line),
+	    cmocka_unit_test(test_deterministic),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
