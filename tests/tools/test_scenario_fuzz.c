@@ -34,13 +34,16 @@
 #endif
 #endif
 #ifdef POOL_FUZZ_SANITIZED
-#define POOL_FUZZ_DEFAULT_CASES 8000
+#define POOL_FUZZ_DEFAULT_CASES 4000
 #else
 #define POOL_FUZZ_DEFAULT_CASES 12000
 #endif
 
-// Events per simulated mutant: enough to reach every event type, few enough for a fast test.
-#define POOL_FUZZ_MAX_EVENTS 20000
+// Events per simulated mutant: enough to reach every event type (LINK ones included), few enough
+// for a fast test: a LINK step of a large cluster costs milliseconds (tens under ASan).
+#define POOL_FUZZ_MAX_EVENTS 1000
+// s of simulated time per mutant, for the same reason.
+#define POOL_FUZZ_MAX_TIME 5.0
 
 // ---------------------------------------------------------------------------------------------
 // Growable byte buffer (mutants are not NUL-terminated when parsed: ASan sees over-reads).
@@ -630,6 +633,8 @@ static bool state_finite(const pool_ball_state *b) {
 static void check_simulation(pool_scenario *s, bool sample, const char *label, fuzz_stats *stats) {
 	if (s->def.max_events > POOL_FUZZ_MAX_EVENTS)
 		s->def.max_events = POOL_FUZZ_MAX_EVENTS;
+	if (s->def.max_time > POOL_FUZZ_MAX_TIME)
+		s->def.max_time = POOL_FUZZ_MAX_TIME;
 	pool_sim *sim = NULL;
 	pool_error e = {{0}};
 	pool_result r = pool_scenario_setup(s, &sim, &e);
