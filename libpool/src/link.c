@@ -7,6 +7,7 @@
 #include "contact.h"
 #include "geometry.h"
 #include "handlers.h"
+#include "motion.h"
 #include "schedule.h"
 #include "vec3.h"
 
@@ -67,10 +68,29 @@ static void join(pool_sim *sim, int i, int c, double t) {
 	pool_world_state_now(sim, i, t, &s);
 	s.motion = POOL_MOTION_LINKED;
 	b->cluster = c;
+	b->loose = 0;
 	pool_schedule_begin_segment(sim, i, &s, t);
 }
 
-// Every ball in play touching one of cluster c's balls at t joins it, transitively.
+void pool_link_adopt(pool_sim *sim, int i, int c, double t) { join(sim, i, c, t); }
+
+int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
+	const pool_params *p = &sim->def.params;
+	const pool_vec3 d = pool_v3_sub(s[0].pos, s[1].pos);
+	const double dist = pool_v3_len(d);
+	const pool_vec3 n = pool_v3_scale(d, 1.0 / dist);
+	const pool_vec3 dv = pool_v3_sub(s[0].vel, s[1].vel);
+	const pool_vec3 da = pool_v3_sub(pool_motion_accel(p, &s[0]), pool_motion_accel(p, &s[1]));
+	const double vn = pool_v3_dot(n, dv);
+	const double approach_accel = -pool_v3_dot(n, da) - (pool_v3_dot(dv, dv) - vn * vn) / dist;
+	return approach_accel > 0.0;
+}
+
+// Every ball in play touching one of cluster c's balls at t and closing on it (faster than
+// POOL_LINK_REST_SPEED) joins it, transitively. A ball that touches without closing stays out:
+// the balls of a frozen rack touch one another, and a step that linked them all would solve
+// the whole rack's contacts; should the cluster press it later, the collision prediction
+// (which sees linked balls) finds the contact and the trigger links it then.
 static void absorb(pool_sim *sim, int c, double t) {
 	const double reach = 2.0 * sim->def.params.ball_radius + POOL_LINK_TOUCH_GAP;
 	for (int changed = 1; changed;) {
@@ -87,7 +107,12 @@ static void absorb(pool_sim *sim, int c, double t) {
 					continue;
 				pool_vec3 pi, vi;
 				pool_segment_path(&bi->seg, t - bi->seg.t0, &pi, &vi);
-				if (pool_v3_len(pool_v3_sub(pk, pi)) <= reach) {
+				const pool_vec3 d = pool_v3_sub(pk, pi);
+				const double dist = pool_v3_len(d);
+				if (!(dist <= reach) || !(dist > 0.0))
+					continue;
+				const double closing = -pool_v3_dot(d, pool_v3_sub(vk, vi)) / dist;
+				if (closing > POOL_LINK_REST_SPEED) {
 					join(sim, k, c, t);
 					changed = 1;
 					break;
@@ -109,6 +134,15 @@ static void reschedule(pool_sim *sim, int c, double now) {
 	pool_schedule_after_event(sim, idx, m, now);
 }
 
+// Something from outside changed cluster c: what its last step decided about who leaves no
+// longer holds, and the next step decides afresh.
+static void unsettle(pool_sim *sim, int c) {
+	sim->clusters[c].quiet = 0;
+	for (int k = 0; k < sim->n; ++k)
+		if (sim->body[k].cluster == c)
+			sim->body[k].loose = 0;
+}
+
 pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t) {
 	int c = -1;
 	for (int k = 0; k < m; ++k) {
@@ -123,8 +157,8 @@ pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t) {
 		sim->link_stats.clusters++;
 	}
 	sim->clusters[c].active = 1;
-	sim->clusters[c].quiet = 0;
 	sim->clusters[c].t_next = t;
+	unsettle(sim, c);
 	for (int k = 0; k < m; ++k)
 		join(sim, seed[k], c, t);
 	absorb(sim, c, t);
@@ -133,14 +167,6 @@ pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t) {
 	pool_world_record_event(sim, t, POOL_EVENT_LINK_BEGIN, POOL_RAIL_NONE, POOL_POCKET_NONE, idx, count);
 	reschedule(sim, c, t);
 	return POOL_OK;
-}
-
-// Every ball of the cluster on the cloth (the closed forms can take over its contacts).
-static int all_on_cloth(const pool_sim *sim, const pool_ball_state *s, int m) {
-	for (int k = 0; k < m; ++k)
-		if (s[k].pos.z > sim->def.params.ball_radius + POOL_TOUCH_TOLERANCE)
-			return 0;
-	return 1;
 }
 
 // Every ball of the cluster still (a heap resting on itself: nothing to step until hit).
@@ -193,19 +219,38 @@ static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, 
 	}
 }
 
-// The cluster's balls resume their closed-form states at t, with the velocities of the last
-// step (its motion up to t): airborne above the cloth, else the on-cloth state of the
-// velocities (pool_motion_after_impulse derives it); link_end records them.
-static void dissolve(pool_sim *sim, int c, const int *idx, int m, double t) {
+// A ball leaving a cluster on the cloth slower than POOL_LINK_REST_SPEED (velocity, and spin's
+// surface speed) leaves at rest. Nothing presses it (it is loose), so that is below anything
+// the step resolves (POOL_LINK_RESIDUAL_MAX), and the step's rounding leaves touching balls
+// drifting at 1e-12 m/s, which the closed forms would take for balls rolling into their
+// neighbours, "colliding" again and again at one instant. (Inside a step the velocities stay
+// exactly the LCP's, whose contacts they keep apart.)
+static void settle(const pool_sim *sim, pool_ball_state *s) {
+	const double R = sim->def.params.ball_radius;
+	const pool_vec3 w_perp = pool_v3(s->omega.x, s->omega.y, 0.0);
+	if (s->pos.z > R + POOL_TOUCH_TOLERANCE || pool_v3_len(s->vel) > POOL_LINK_REST_SPEED ||
+	    pool_v3_len(w_perp) * R > POOL_LINK_REST_SPEED)
+		return;
+	s->vel = pool_v3(0.0, 0.0, 0.0);
+	s->omega.x = s->omega.y = 0.0;
+	if (fabs(s->omega.z) * R <= POOL_LINK_REST_SPEED)
+		s->omega.z = 0.0;
+}
+
+// Balls idx[0..m) of a cluster leave it at t and resume their closed-form states, with the
+// velocities of the last step (its motion up to t): airborne above the cloth, else the on-cloth
+// state of the velocities (pool_motion_after_impulse derives it); link_end records them.
+static void release(pool_sim *sim, const int *idx, int m, double t) {
 	pool_ball_state *s = sim->link_states;
-	sim->clusters[c].active = 0;
 	for (int k = 0; k < m; ++k)
 		pool_world_state_now(sim, idx[k], t, &s[k]);
 	merge_common_motion(sim, s, m, sim->work);
 	for (int k = 0; k < m; ++k) {
+		settle(sim, &s[k]);
 		s[k].motion = POOL_MOTION_SLIDING;
 		pool_motion_after_impulse(&sim->def, &s[k]);
 		sim->body[idx[k]].cluster = -1;
+		sim->body[idx[k]].loose = 0;
 		pool_schedule_begin_segment(sim, idx[k], &s[k], t);
 	}
 	pool_world_record_event(sim, t, POOL_EVENT_LINK_END, POOL_RAIL_NONE, POOL_POCKET_NONE, idx, m);
@@ -243,6 +288,30 @@ static pool_result pocket_strays(pool_sim *sim, int c, double t) {
 	return POOL_OK;
 }
 
+// Loose balls (states s[0..m) after the step, the cluster's idx[0..m)) that the closed forms
+// would press together again at once stay linked: leaving, they would collide at once with
+// nothing to part them and the trigger would link them again, one cluster per step where one
+// cluster holds them.
+static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s, int m) {
+	pool_ball_state *free_state = sim->link_leaving;
+	for (int k = 0; k < m; ++k) {
+		free_state[k] = s[k];
+		settle(sim, &free_state[k]);
+		free_state[k].motion = POOL_MOTION_SLIDING;
+		pool_motion_after_impulse(&sim->def, &free_state[k]);
+	}
+	const double reach = 2.0 * sim->def.params.ball_radius + POOL_LINK_TOUCH_GAP;
+	for (int a = 0; a < m; ++a)
+		for (int b = a + 1; b < m; ++b) {
+			pool_body *ba = &sim->body[idx[a]], *bb = &sim->body[idx[b]];
+			if (!ba->loose || !bb->loose || !(pool_v3_len(pool_v3_sub(s[a].pos, s[b].pos)) <= reach))
+				continue;
+			const pool_ball_state pair[2] = {free_state[a], free_state[b]};
+			if (pool_link_pressed_pair(sim, pair))
+				ba->loose = bb->loose = 0;
+		}
+}
+
 pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	const int c = sim->body[i].cluster;
 	pool_cluster *cl = &sim->clusters[c];
@@ -252,16 +321,35 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 		return rp;
 	int *idx = sim->link_members;
 	pool_ball_state *s = sim->link_states;
-	const int m = members(sim, c, idx);
+	int m = members(sim, c, idx);
 	if (m == 0) {
 		cl->active = 0;
 		return POOL_OK;
 	}
-	// Dissolution is decided by the last step, so every cluster takes at least one step (a
-	// Zeno pair is merged by it) and a dissolving cluster keeps the motion it had.
+	// Leaving is decided by the last step, so every cluster takes at least one step (a Zeno
+	// pair is merged by it) and a leaving ball keeps the motion it had.
 	if (cl->quiet) {
-		dissolve(sim, c, idx, m, t);
+		cl->active = 0;
+		release(sim, idx, m, t);
 		return POOL_OK;
+	}
+	// The loose balls first (members keep ascending order within each part), then they leave:
+	// one link_end with them (pool_sim_step reserved the history for it and the step).
+	int loose = 0;
+	for (int k = 0; k < m; ++k)
+		if (sim->body[idx[k]].loose) {
+			const int i = idx[k];
+			for (int j = k; j > loose; --j)
+				idx[j] = idx[j - 1];
+			idx[loose++] = i;
+		}
+	if (loose > 0) {
+		release(sim, idx, loose, t);
+		m = members(sim, c, idx);
+		if (m == 0) {
+			cl->active = 0;
+			return POOL_OK;
+		}
 	}
 	for (int k = 0; k < m; ++k)
 		pool_world_state_now(sim, idx[k], t, &s[k]);
@@ -277,14 +365,32 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	total->max_contacts = st.contacts > total->max_contacts ? st.contacts : total->max_contacts;
 	total->max_residual = fmax(total->max_residual, st.residual);
 	cl->steps++;
-	const int still = all_still(sim, s, m), on_cloth = all_on_cloth(sim, s, m);
-	// Apart, or touching on the cloth without pressing: the closed forms take over (two balls
-	// rolling together in contact stay so by themselves; if friction presses them again, the
-	// trigger forms a new cluster). A heap at rest above the cloth sleeps instead.
-	cl->quiet = st.touching == 0 || (on_cloth && (still || st.max_push <= POOL_LINK_REST_SPEED));
-	cl->t_next = still && !cl->quiet ? INFINITY : t + POOL_LINK_STEP_TIME;
+	const int still = all_still(sim, s, m);
+	// A ball nothing presses leaves at the next step: on the cloth the closed forms take over
+	// its contacts (two balls rolling together in contact stay so by themselves; if friction
+	// presses them again, the trigger links them again), above it only once it touches
+	// nothing. The cluster dissolves when every ball leaves; a heap at rest above the cloth
+	// sleeps instead.
+	for (int k = 0; k < m; ++k) {
+		const int on_cloth = s[k].pos.z <= sim->def.params.ball_radius + POOL_TOUCH_TOLERANCE;
+		const int unpressed = sim->link_ws.ball_push[k] <= POOL_LINK_REST_SPEED;
+		sim->body[idx[k]].loose = (on_cloth && (unpressed || still)) || (unpressed && sim->link_ws.ball_touching[k] == 0);
+	}
+	hold_pressed(sim, idx, s, m);
+	int leaving = 0;
+	for (int k = 0; k < m; ++k)
+		leaving += sim->body[idx[k]].loose;
+	cl->quiet = leaving == m;
+	cl->t_next = still && leaving == 0 ? INFINITY : t + POOL_LINK_STEP_TIME;
 	for (int k = 0; k < m; ++k) {
 		s[k].motion = POOL_MOTION_LINKED;
+		// The LCP's rounding (down to 1e-36 m/s) is no motion: a linked ball drifting at it
+		// would "collide" with every touching ball outside. Below POOL_REST_EPS, as in the
+		// closed-form states' own clean-up, a velocity or spin is zero (1e-15 m per step).
+		if (pool_v3_len(s[k].vel) <= POOL_REST_EPS)
+			s[k].vel = pool_v3(0.0, 0.0, 0.0);
+		if (pool_v3_len(s[k].omega) * sim->def.params.ball_radius <= POOL_REST_EPS)
+			s[k].omega = pool_v3(0.0, 0.0, 0.0);
 		if (pool_world_planar(sim)) {
 			s[k].pos.z = sim->def.params.ball_radius;
 			s[k].vel.z = 0.0;
@@ -299,6 +405,7 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 void pool_link_touched(pool_sim *sim, int i, double t) {
 	const int c = sim->body[i].cluster;
 	sim->clusters[c].t_next = t;
+	unsettle(sim, c);
 	reschedule(sim, c, t);
 }
 

@@ -28,6 +28,14 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t);
 /// keeps it linked and makes its cluster step at t, so no event inside a step is skipped.
 void pool_link_touched(pool_sim *sim, int i, double t);
 
+/// Ball i (in play, in no cluster) joins cluster c at t, its state then a linked segment's start.
+void pool_link_adopt(pool_sim *sim, int i, int c, double t);
+
+/// 1 when two touching balls s[0..2) (closed-form states at the contact) are pressed together:
+/// their normal approach acceleration, the difference of their accelerations along the normal
+/// less the curvature of their relative path (|v_t|^2 / 2R parts them), is positive.
+int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s);
+
 /// Member i left play (pocketed, off the table) at t: it leaves its cluster, which steps at t.
 void pool_link_left(pool_sim *sim, int i, double t);
 

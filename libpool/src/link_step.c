@@ -260,6 +260,8 @@ typedef struct link_memory {
 	link_contact *contacts; // nc
 	link_incidence *inc;   // 2 nc
 	int *inc_start;        // n + 1
+	double *ball_push;     // n
+	int *ball_touching;    // n
 	void *lemke;
 } link_memory;
 
@@ -287,6 +289,8 @@ static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
 	LINK_PLACE(contacts, link_contact, nc);
 	LINK_PLACE(inc, link_incidence, 2 * (size_t)nc);
 	LINK_PLACE(inc_start, int, (size_t)n + 1);
+	LINK_PLACE(ball_push, double, (size_t)n);
+	LINK_PLACE(ball_touching, int, (size_t)n);
 #undef LINK_PLACE
 	if (m)
 		m->lemke = b ? b + at : NULL;
@@ -627,17 +631,34 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	// point: a false ray, or a residual above the limit. Each failure is retried from a cold
 	// start with the impulse block made positive definite by a compliance of
 	// POOL_LINK_REGULARIZATION (then 1000 times that): a contact yielding 1e-9 (1e-6) m/s per m/s
-	// of impulse, far below anything the step resolves. Every attempt's residual is checked.
-	static const double compliance[] = {0.0, POOL_LINK_REGULARIZATION, 1e3 * POOL_LINK_REGULARIZATION};
-	// (1e-6 at most: a contact that gives way by a micrometre per second per m/s of impulse.)
+	// of impulse, far below anything the step resolves. The last retry drops the alignment of
+	// the friction directions with the slips (the fixed directions of the 2012 work): a slip
+	// that barely exceeds POOL_LINK_ALIGN_SLIP puts a direction exactly along a contact velocity
+	// rounding cannot resolve, and the soak's rare failures with every compliance above (a
+	// ball rolling to within 1e-5 m/s while rubbing a neighbour) solve at once without it. That
+	// step's friction is then off its slip by at most pi / eta. Every attempt's residual is
+	// checked.
+	typedef struct retry {
+		double compliance;
+		int align;
+	} retry;
+	const retry ladder[] = {{0.0, options->align_friction},
+	                        {POOL_LINK_REGULARIZATION, options->align_friction},
+	                        {1e3 * POOL_LINK_REGULARIZATION, options->align_friction},
+	                        {0.0, 0}};
+	const size_t attempts = options->align_friction ? 4 : 3;
 	pool_lemke_stats ls;
 	pool_lemke_status status = POOL_LEMKE_BAD_INPUT;
 	int pivots = 0;
-	for (size_t attempt = 0; attempt < sizeof compliance / sizeof compliance[0]; ++attempt) {
+	for (size_t attempt = 0; attempt < attempts; ++attempt) {
+		if (attempt > 0 && ladder[attempt].align != ladder[attempt - 1].align) {
+			build_directions(&P, ladder[attempt].align);
+			build_vector(&P, dt);
+		}
 		build_matrix(&P);
 		scale_to_velocity_units(&P, mass);
 		for (int i = 0; i < nc * (eta + 1); ++i)
-			P.m.A[(size_t)i * (size_t)P.L + (size_t)i] += compliance[attempt];
+			P.m.A[(size_t)i * (size_t)P.L + (size_t)i] += ladder[attempt].compliance;
 		if (attempt > 0)
 			for (int i = 0; i < P.L; ++i)
 				P.m.basis[i] = 0;
@@ -675,13 +696,32 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	ws->basis_key = key;
 	ws->n_basis = P.L;
 
+	// What presses each ball: the push its ball-ball and cushion contacts carried over the step,
+	// as a speed (dt fn / m), touching at the start or closed by the step.
+	ws->ball_push = P.m.ball_push;
+	ws->ball_touching = P.m.ball_touching;
+	for (int k = 0; k < n; ++k) {
+		P.m.ball_push[k] = 0.0;
+		P.m.ball_touching[k] = 0;
+	}
+	for (int i = 0; i < nc; ++i) {
+		const link_contact *c = &P.c[i];
+		if (c->kind == LINK_CLOTH)
+			continue;
+		const double push = P.m.z[row_of(&P, i, 0)] / mass;
+		const int touching = c->gap <= POOL_LINK_TOUCH_GAP;
+		for (int side = 0; side < (c->kind == LINK_BALL ? 2 : 1); ++side) {
+			const int k = side ? c->b : c->a;
+			P.m.ball_push[k] = fmax(P.m.ball_push[k], push);
+			P.m.ball_touching[k] += touching;
+		}
+	}
 	if (stats)
 		for (int i = 0; i < nc; ++i) {
 			if (!(P.c[i].gap <= POOL_LINK_TOUCH_GAP))
 				continue;
 			if (P.c[i].kind != LINK_CLOTH) {
 				++stats->touching;
-				// The push the contact carried over the step, as a speed (dt fn / m).
 				stats->max_push = fmax(stats->max_push, P.m.z[row_of(&P, i, 0)] / mass);
 			}
 			stats->max_contact_speed = fmax(stats->max_contact_speed, pool_v3_len(contact_velocity(&P.c[i], P.m.V)));

@@ -60,6 +60,10 @@ typedef struct pool_link_workspace {
 	int *basis;   ///< warm start: the previous step's Lemke basis (valid while the contact set
 	int n_basis;  ///< is unchanged: basis_key identifies it)
 	unsigned long long basis_key;
+	/// After a successful step, per ball of the step (n of them, valid until the next step):
+	double *ball_push; ///< m/s, its largest normal impulse / ball mass at a ball-ball or
+	                   ///< ball-cushion contact over the step (0: nothing presses it)
+	int *ball_touching; ///< its ball-ball and ball-cushion contacts touching at the step's start
 } pool_link_workspace;
 
 /// Frees the workspace's memory (with the allocator that made it).

@@ -133,7 +133,7 @@ void pool_sim_destroy(pool_sim *sim) {
 	const pool_allocator a = sim->alloc;
 	void *arrays[] = {sim->cur,    sim->body,        sim->keys,        sim->heap,        sim->hpos,
 	                  sim->work,   sim->clusters,    sim->link_states, sim->link_members, sim->events,
-	                  sim->states, sim->state_time,  sim->state_prev};
+	                  sim->states, sim->state_time,  sim->state_prev, sim->link_leaving};
 	pool_link_workspace_free(&sim->link_ws, &a);
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
 		mem_free(&a, arrays[i]);
@@ -187,11 +187,13 @@ static pool_result reserve_balls(pool_sim *sim, int need) {
 	int cap = next_cap(sim->cap_balls, need);
 	void **arrays[] = {(void **)&sim->cur,      (void **)&sim->body,        (void **)&sim->keys,
 	                   (void **)&sim->heap,     (void **)&sim->hpos,        (void **)&sim->work,
-	                   (void **)&sim->clusters, (void **)&sim->link_states, (void **)&sim->link_members};
+	                   (void **)&sim->clusters, (void **)&sim->link_states, (void **)&sim->link_members,
+	                   (void **)&sim->link_leaving};
 	const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body),       sizeof(pool_event_key),
 	                        sizeof(int),             sizeof(int),             sizeof(int),
-	                        sizeof(pool_cluster),    sizeof(pool_ball_state), sizeof(int)};
-	pool_result r = grow_arrays(sim, arrays, elems, 9, sim->n, cap);
+	                        sizeof(pool_cluster),    sizeof(pool_ball_state), sizeof(int),
+	                        sizeof(pool_ball_state)};
+	pool_result r = grow_arrays(sim, arrays, elems, 10, sim->n, cap);
 	if (r == POOL_OK)
 		sim->cap_balls = cap;
 	return r;
@@ -357,21 +359,6 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 /// Consecutive no-op contacts (grazes) skipped before one is recorded anyway.
 #define NOOP_LIMIT 8
 
-// Two touching balls s[0..2) (states at the contact) pressed together: their normal approach
-// acceleration, the difference of their accelerations along the normal less the curvature of
-// their relative path (|v_t|^2 / 2R parts them), is positive.
-static int pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
-	const pool_params *p = &sim->def.params;
-	const pool_vec3 d = pool_v3_sub(s[0].pos, s[1].pos);
-	const double dist = pool_v3_len(d);
-	const pool_vec3 n = pool_v3_scale(d, 1.0 / dist);
-	const pool_vec3 dv = pool_v3_sub(s[0].vel, s[1].vel);
-	const pool_vec3 da = pool_v3_sub(pool_motion_accel(p, &s[0]), pool_motion_accel(p, &s[1]));
-	const double vn = pool_v3_dot(n, dv);
-	const double approach_accel = -pool_v3_dot(n, da) - (pool_v3_dot(dv, dv) - vn * vn) / dist;
-	return approach_accel > 0.0;
-}
-
 // After a recorded collision: the LINK trigger (link.h), which may start a cluster at `now`.
 static pool_result note_collision(pool_sim *sim, pool_event_type type, const int *inv, pool_rail rail, double now) {
 	if (type == POOL_EVENT_BALL_BALL) {
@@ -430,7 +417,7 @@ static pool_result process(pool_sim *sim, int slot) {
 	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
 	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
 	// persistent contact by definition: LINK takes it at once (no event of its own is recorded).
-	if (unchanged && (type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pressed_pair(sim, s))) &&
+	if (unchanged && (type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pool_link_pressed_pair(sim, s))) &&
 	    !(sim->body[inv[0]].cluster >= 0 && (count == 1 || sim->body[inv[0]].cluster == sim->body[inv[1]].cluster))) {
 		sim->noop_streak = 0;
 		sim->time = now;
@@ -459,6 +446,14 @@ static pool_result process(pool_sim *sim, int slot) {
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
+	// A ball that hit a cluster's ball joins the cluster: if the cluster presses it, the next
+	// step holds it (rather than impulses at one instant, each after a whole step's forces);
+	// if not, the step finds it loose and it leaves.
+	if (type == POOL_EVENT_BALL_BALL && sim->body[inv[0]].active && sim->body[inv[1]].active &&
+	    (sim->body[inv[0]].cluster >= 0) != (sim->body[inv[1]].cluster >= 0)) {
+		const int member = sim->body[inv[0]].cluster >= 0 ? 0 : 1;
+		pool_link_adopt(sim, inv[1 - member], sim->body[inv[member]].cluster, now);
+	}
 	// The cluster of a ball the event changed steps now: no event inside a step is skipped.
 	for (int k = 0; k < count; ++k) {
 		if (sim->body[inv[k]].cluster < 0)

@@ -41,6 +41,8 @@ typedef struct pool_body {
 	pool_pocket own_pocket;   ///< for a pocket event
 	int partner;              ///< other body of the pending event in the queue slot, or -1
 	int cluster;              ///< LINK cluster the ball belongs to, or -1
+	int loose;                ///< the cluster's last step found nothing pressing it: it leaves
+	                          ///< the cluster at the next step
 	pool_contact_streak streak[POOL_LINK_PARTNERS]; ///< recent collisions, for the LINK trigger
 } pool_body;
 
@@ -50,8 +52,8 @@ typedef struct pool_cluster {
 	int active;    ///< in use
 	double t_next; ///< s, the cluster's next step (INFINITY while it sleeps)
 	int steps;     ///< steps taken
-	int quiet;     ///< the last step found the balls apart, or touching on the cloth without
-	               ///< pressing: the cluster dissolves at its next step instead of solving again
+	int quiet;     ///< the last step found every ball loose (pool_body.loose): the cluster
+	               ///< dissolves at its next step instead of solving again
 } pool_cluster;
 
 struct pool_sim {
@@ -69,6 +71,7 @@ struct pool_sim {
 	pool_cluster *clusters;         // cap_balls of them: at most one per ball
 	pool_ball_state *link_states;   // scratch of a link step, cap_balls
 	int *link_members;              // scratch of a link step, cap_balls
+	pool_ball_state *link_leaving;  // scratch of a link step: the states leaving balls would get
 	pool_link_workspace link_ws;    // the steps' LCP memory, reused
 	pool_link_stats link_stats;     // this shot's
 	pool_result failed;             // a link step's solve failed: the shot cannot go on
