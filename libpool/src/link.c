@@ -51,6 +51,15 @@ static int members(const pool_sim *sim, int c, int *out) {
 	return m;
 }
 
+// Linked ball i's state at t, the end of its step: the segment's mean velocity plus the step's
+// tail (link_step.h; zero after an interruption).
+static void step_end_state(const pool_sim *sim, int i, double t, pool_ball_state *s) {
+	pool_world_state_now(sim, i, t, s);
+	const double *tail = sim->body[i].tail;
+	s->vel = pool_v3_add(s->vel, pool_v3(tail[0], tail[1], tail[2]));
+	s->omega = pool_v3_add(s->omega, pool_v3(tail[3], tail[4], tail[5]));
+}
+
 // Ball i joins cluster c at t: it (or the whole cluster it is in) starts linked segments there.
 static void join(pool_sim *sim, int i, int c, double t) {
 	pool_body *b = &sim->body[i];
@@ -69,6 +78,8 @@ static void join(pool_sim *sim, int i, int c, double t) {
 	s.motion = POOL_MOTION_LINKED;
 	b->cluster = c;
 	b->loose = 0;
+	for (int e = 0; e < 6; ++e)
+		b->tail[e] = 0.0;
 	pool_schedule_begin_segment(sim, i, &s, t);
 }
 
@@ -136,11 +147,19 @@ static void reschedule(pool_sim *sim, int c, double now) {
 
 // Something from outside changed cluster c: what its last step decided about who leaves no
 // longer holds, and the next step decides afresh.
+// The current step is cut short, so its forces were applied for longer than the time that
+// passed: the next step is POOL_LINK_STEP_TIME again, and the velocities stay the step's mean
+// (its tail, half a step of cloth resistance, is dropped: at most 1/2 mu_roll g
+// POOL_LINK_STEP_MAX, 0.8 mm/s).
 static void unsettle(pool_sim *sim, int c) {
 	sim->clusters[c].quiet = 0;
+	sim->clusters[c].dt = POOL_LINK_STEP_TIME;
 	for (int k = 0; k < sim->n; ++k)
-		if (sim->body[k].cluster == c)
+		if (sim->body[k].cluster == c) {
 			sim->body[k].loose = 0;
+			for (int e = 0; e < 6; ++e)
+				sim->body[k].tail[e] = 0.0;
+		}
 }
 
 pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t) {
@@ -164,6 +183,14 @@ pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t) {
 	absorb(sim, c, t);
 	int *idx = sim->link_members;
 	const int count = members(sim, c, idx);
+	// Balls already linked restart their segments here, so link_begin records every ball's state
+	// at t (the history evolves each recorded state from its event's time).
+	for (int k = 0; k < count; ++k)
+		if (sim->body[idx[k]].seg.t0 < t) {
+			pool_ball_state s;
+			pool_world_state_now(sim, idx[k], t, &s);
+			pool_schedule_begin_segment(sim, idx[k], &s, t);
+		}
 	pool_world_record_event(sim, t, POOL_EVENT_LINK_BEGIN, POOL_RAIL_NONE, POOL_POCKET_NONE, idx, count);
 	reschedule(sim, c, t);
 	return POOL_OK;
@@ -219,21 +246,23 @@ static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, 
 	}
 }
 
-// A ball leaving a cluster on the cloth slower than POOL_LINK_REST_SPEED (velocity, and spin's
-// surface speed) leaves at rest. Nothing presses it (it is loose), so that is below anything
-// the step resolves (POOL_LINK_RESIDUAL_MAX), and the step's rounding leaves touching balls
-// drifting at 1e-12 m/s, which the closed forms would take for balls rolling into their
-// neighbours, "colliding" again and again at one instant. (Inside a step the velocities stay
-// exactly the LCP's, whose contacts they keep apart.)
+/// m/s: a ball leaving a cluster on the cloth slower than this (velocity, and spin's surface
+/// speed) leaves at rest. The LCP's rounding leaves touching balls drifting at up to ~1e-10 m/s,
+/// which the closed forms would take for balls rolling into their neighbours, "colliding" again
+/// and again at one instant; stopping a ball 100 times faster than that moves it from the path
+/// the step gave it by 1e-11 m per millisecond, far inside POOL_TOUCH_TOLERANCE. (Inside a step
+/// the velocities stay exactly the LCP's, whose contacts they keep apart.)
+#define POOL_LINK_SETTLE_SPEED 1e-8
+
 static void settle(const pool_sim *sim, pool_ball_state *s) {
 	const double R = sim->def.params.ball_radius;
 	const pool_vec3 w_perp = pool_v3(s->omega.x, s->omega.y, 0.0);
-	if (s->pos.z > R + POOL_TOUCH_TOLERANCE || pool_v3_len(s->vel) > POOL_LINK_REST_SPEED ||
-	    pool_v3_len(w_perp) * R > POOL_LINK_REST_SPEED)
+	if (s->pos.z > R + POOL_TOUCH_TOLERANCE || pool_v3_len(s->vel) > POOL_LINK_SETTLE_SPEED ||
+	    pool_v3_len(w_perp) * R > POOL_LINK_SETTLE_SPEED)
 		return;
 	s->vel = pool_v3(0.0, 0.0, 0.0);
 	s->omega.x = s->omega.y = 0.0;
-	if (fabs(s->omega.z) * R <= POOL_LINK_REST_SPEED)
+	if (fabs(s->omega.z) * R <= POOL_LINK_SETTLE_SPEED)
 		s->omega.z = 0.0;
 }
 
@@ -243,7 +272,7 @@ static void settle(const pool_sim *sim, pool_ball_state *s) {
 static void release(pool_sim *sim, const int *idx, int m, double t) {
 	pool_ball_state *s = sim->link_states;
 	for (int k = 0; k < m; ++k)
-		pool_world_state_now(sim, idx[k], t, &s[k]);
+		step_end_state(sim, idx[k], t, &s[k]);
 	merge_common_motion(sim, s, m, sim->work);
 	for (int k = 0; k < m; ++k) {
 		settle(sim, &s[k]);
@@ -295,7 +324,13 @@ static pool_result pocket_strays(pool_sim *sim, int c, double t) {
 static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s, int m) {
 	pool_ball_state *free_state = sim->link_leaving;
 	for (int k = 0; k < m; ++k) {
+		const double *tail = sim->link_ws.ball_tail + 6 * k;
 		free_state[k] = s[k];
+		free_state[k].vel = pool_v3_add(s[k].vel, pool_v3(tail[0], tail[1], tail[2]));
+		free_state[k].omega = pool_v3_add(s[k].omega, pool_v3(tail[3], tail[4], tail[5]));
+	}
+	merge_common_motion(sim, free_state, m, sim->work); // as release() would
+	for (int k = 0; k < m; ++k) {
 		settle(sim, &free_state[k]);
 		free_state[k].motion = POOL_MOTION_SLIDING;
 		pool_motion_after_impulse(&sim->def, &free_state[k]);
@@ -310,6 +345,13 @@ static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s
 			if (pool_link_pressed_pair(sim, pair))
 				ba->loose = bb->loose = 0;
 		}
+}
+
+// The length of the step after one of length dt whose contacts accelerated a ball by at most
+// accel (POOL_LINK_STEP_MAX says why).
+static double next_step_length(double dt, double accel) {
+	const double bound = accel > 0.0 ? sqrt(2.0 * POOL_LINK_STEP_ERROR / accel) : INFINITY;
+	return fmax(POOL_LINK_STEP_TIME, fmin(fmin(2.0 * dt, POOL_LINK_STEP_MAX), bound));
 }
 
 pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
@@ -352,9 +394,9 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 		}
 	}
 	for (int k = 0; k < m; ++k)
-		pool_world_state_now(sim, idx[k], t, &s[k]);
+		step_end_state(sim, idx[k], t, &s[k]);
 	pool_link_step_stats st;
-	const pool_result r = pool_link_step(&sim->def, s, m, POOL_LINK_STEP_TIME, &sim->link_ws, &sim->alloc, &st);
+	const pool_result r = pool_link_step(&sim->def, s, m, cl->dt, &sim->link_ws, &sim->alloc, &st);
 	if (r)
 		return r;
 	pool_link_stats *total = &sim->link_stats;
@@ -381,8 +423,13 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	for (int k = 0; k < m; ++k)
 		leaving += sim->body[idx[k]].loose;
 	cl->quiet = leaving == m;
-	cl->t_next = still && leaving == 0 ? INFINITY : t + POOL_LINK_STEP_TIME;
+	const double this_dt = cl->dt;
+	cl->t_next = still && leaving == 0 ? INFINITY : t + this_dt;
+	cl->dt = next_step_length(this_dt, st.max_contact_accel);
 	for (int k = 0; k < m; ++k) {
+		const double *tail = sim->link_ws.ball_tail + 6 * k;
+		for (int e = 0; e < 6; ++e)
+			sim->body[idx[k]].tail[e] = tail[e];
 		s[k].motion = POOL_MOTION_LINKED;
 		// The LCP's rounding (down to 1e-36 m/s) is no motion: a linked ball drifting at it
 		// would "collide" with every touching ball outside. Below POOL_REST_EPS, as in the
@@ -420,6 +467,7 @@ void pool_link_left(pool_sim *sim, int i, double t) {
 		return;
 	}
 	sim->clusters[c].t_next = t;
+	unsettle(sim, c);
 	reschedule(sim, c, t);
 }
 

@@ -262,6 +262,8 @@ typedef struct link_memory {
 	int *inc_start;        // n + 1
 	double *ball_push;     // n
 	int *ball_touching;    // n
+	double *tail;          // 6 n: end-of-step velocity less the mean (half the cloth wrenches)
+	double *V_free;        // 6 n: the free velocities, kept to measure the contacts' effect
 	void *lemke;
 } link_memory;
 
@@ -291,6 +293,8 @@ static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
 	LINK_PLACE(inc_start, int, (size_t)n + 1);
 	LINK_PLACE(ball_push, double, (size_t)n);
 	LINK_PLACE(ball_touching, int, (size_t)n);
+	LINK_PLACE(tail, double, 6 * (size_t)n);
+	LINK_PLACE(V_free, double, 6 * (size_t)n);
 #undef LINK_PLACE
 	if (m)
 		m->lemke = b ? b + at : NULL;
@@ -326,10 +330,37 @@ static int finite_state(const pool_ball_state *b) {
 	return pool_v3_finite(b->pos) && pool_v3_finite(b->vel) && pool_v3_finite(b->omega);
 }
 
-/// Free velocities: gravity and the explicit cloth resistances (top of the file).
+/// The explicit cloth resistances (top of the file) over a time h on the velocities v (6) of a
+/// ball touching the cloth, each clamped so it stops a motion rather than reverse it; the
+/// rolling criterion is that of a step of dt.
+static void cloth_resistance(const pool_params *p, double h, double dt, double *v) {
+	const double R = p->ball_radius;
+	// Spin friction: wz towards 0 at 5 mu_spin g / (2R), never past it.
+	const double dwz = 2.5 * p->mu_spin * p->g * h / R;
+	v[5] = fabs(v[5]) <= dwz ? 0.0 : v[5] - copysign(dwz, v[5]);
+	// Rolling resistance, for a rolling ball only.
+	const pool_vec3 vel = pool_v3(v[0], v[1], 0.0), w = pool_v3(v[3], v[4], v[5]);
+	const pool_vec3 slip = pool_v3_add(vel, pool_v3_scale(pool_v3_kcross(w), R));
+	const double speed = pool_v3_len(vel);
+	if (!(pool_v3_len(pool_v3_xy(slip)) <= 3.5 * p->mu_slide * p->g * dt) || !(speed > 0.0))
+		return;
+	const double dv = fmin(p->mu_roll * p->g * h, speed);
+	const pool_vec3 delta = pool_v3_scale(vel, -dv / speed);
+	const pool_vec3 dw = pool_v3_scale(pool_v3_kcross(delta), 1.0 / R);
+	v[0] += delta.x;
+	v[1] += delta.y;
+	v[3] += dw.x;
+	v[4] += dw.y;
+}
+
+/// Free velocities: gravity and the explicit cloth resistances. The resistances act at the
+/// step's midpoint: V gets their first half, so the LCP solves for the mean velocity over the
+/// step, with which the positions advance; the second half acts on that mean (step_tail), so it
+/// never reverses what the contacts stopped. Uniform motion at the mean is exact for a rolling
+/// ball (constant deceleration), where the end velocity would lag it by 1/2 mu_roll g dt^2 per
+/// step. Gravity stays whole in V: on the cloth the LCP cancels it.
 static void free_velocities(const link_scene *sc, const link_contact *c, int nc, double dt, double *V) {
 	const pool_params *p = &sc->def->params;
-	const double R = p->ball_radius;
 	for (int k = 0; k < sc->n; ++k) {
 		const pool_ball_state *b = &sc->s[k];
 		double *v = V + 6 * k;
@@ -340,31 +371,27 @@ static void free_velocities(const link_scene *sc, const link_contact *c, int nc,
 		v[4] = b->omega.y;
 		v[5] = b->omega.z;
 	}
+	for (int i = 0; i < nc; ++i)
+		if (c[i].kind == LINK_CLOTH && c[i].gap <= POOL_LINK_TOUCH_GAP)
+			cloth_resistance(p, 0.5 * dt, dt, V + 6 * c[i].a);
+	for (int k = 0; k < sc->n; ++k)
+		V[6 * k + 2] -= p->g * dt;
+}
+
+/// tail: the second half of the cloth resistances, on the step's mean velocities V: the
+/// velocities at the step's end are V + tail.
+static void step_tail(const link_scene *sc, const link_contact *c, int nc, double dt, const double *V, double *tail) {
+	for (int k = 0; k < 6 * sc->n; ++k)
+		tail[k] = 0.0;
 	for (int i = 0; i < nc; ++i) {
 		if (c[i].kind != LINK_CLOTH || !(c[i].gap <= POOL_LINK_TOUCH_GAP))
 			continue;
-		double *v = V + 6 * c[i].a;
-		// Spin friction: wz towards 0 at 5 mu_spin g / (2R), never past it.
-		const double dwz = 2.5 * p->mu_spin * p->g * dt / R;
-		v[5] = fabs(v[5]) <= dwz ? 0.0 : v[5] - copysign(dwz, v[5]);
-		// Rolling resistance, for a rolling ball only.
-		const pool_vec3 vel = pool_v3(v[0], v[1], 0.0), w = pool_v3(v[3], v[4], v[5]);
-		const pool_vec3 slip = pool_v3_add(vel, pool_v3_scale(pool_v3_kcross(w), R));
-		if (!(pool_v3_len(pool_v3_xy(slip)) <= 3.5 * p->mu_slide * p->g * dt))
-			continue;
-		const double speed = pool_v3_len(vel);
-		if (!(speed > 0.0))
-			continue;
-		const double dv = fmin(p->mu_roll * p->g * dt, speed);
-		const pool_vec3 delta = pool_v3_scale(vel, -dv / speed);
-		const pool_vec3 dw = pool_v3_scale(pool_v3_kcross(delta), 1.0 / R);
-		v[0] += delta.x;
-		v[1] += delta.y;
-		v[3] += dw.x;
-		v[4] += dw.y;
+		double v[6];
+		memcpy(v, V + 6 * c[i].a, sizeof v);
+		cloth_resistance(&sc->def->params, 0.5 * dt, dt, v);
+		for (int e = 0; e < 6; ++e)
+			tail[6 * c[i].a + e] = v[e] - V[6 * c[i].a + e];
 	}
-	for (int k = 0; k < sc->n; ++k)
-		V[6 * k + 2] -= p->g * dt;
 }
 
 /// The separation the normal row asks for, as a velocity: -gap/dt for an open contact (it may
@@ -616,6 +643,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	P.c = P.m.contacts;
 
 	free_velocities(&sc, P.c, nc, dt, P.m.V);
+	memcpy(P.m.V_free, P.m.V, sizeof(double) * 6 * (size_t)n);
 	build_directions(&P, options->align_friction);
 	build_incidence(&P);
 	build_vector(&P, dt);
@@ -700,6 +728,11 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	// as a speed (dt fn / m), touching at the start or closed by the step.
 	ws->ball_push = P.m.ball_push;
 	ws->ball_touching = P.m.ball_touching;
+	step_tail(&sc, P.c, nc, dt, P.m.V, P.m.tail);
+	ws->ball_tail = P.m.tail;
+	if (sc.planar)
+		for (int k = 0; k < n; ++k)
+			P.m.tail[6 * k + 2] = 0.0;
 	for (int k = 0; k < n; ++k) {
 		P.m.ball_push[k] = 0.0;
 		P.m.ball_touching[k] = 0;
@@ -716,6 +749,21 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 			P.m.ball_touching[k] += touching;
 		}
 	}
+	if (stats)
+		for (int k = 0; k < n; ++k) {
+			// The contacts' change of the ball's horizontal velocity and of its surface speed
+			// (a ball held against a rail by cloth friction changes its spin, not its velocity;
+			// the cloth's cancelling of gravity is no change of motion).
+			const double *a = P.m.V + 6 * k, *b = P.m.V_free + 6 * k;
+			double dv = 0.0, dw = 0.0;
+			for (int e = 0; e < 3; ++e) {
+				if (e < 2)
+					dv += (a[e] - b[e]) * (a[e] - b[e]);
+				dw += (a[e + 3] - b[e + 3]) * (a[e + 3] - b[e + 3]);
+			}
+			const double change = sqrt(dv) + R * sqrt(dw);
+			stats->max_contact_accel = fmax(stats->max_contact_accel, change / dt);
+		}
 	if (stats)
 		for (int i = 0; i < nc; ++i) {
 			if (!(P.c[i].gap <= POOL_LINK_TOUCH_GAP))

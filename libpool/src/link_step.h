@@ -2,9 +2,10 @@
 // level frictional-contact LCP of Anitescu & Potra / Stewart & Trinkle over the cluster's
 // ball-ball, ball-cloth and ball-cushion contacts, with a polyhedral friction cone of
 // POOL_LINK_ETA directions per contact, solved by lexicographic Lemke (lemke.h). The step turns
-// the balls' velocities at the step's start into the velocities they keep over the step; the
-// positions then advance linearly with them (the world's linked segments), so the exact state
-// at any instant inside a step is known.
+// the balls' velocities at the step's start into the mean velocities they keep over the step
+// (the explicit cloth wrenches act at its midpoint, link_step.c); the positions then advance
+// linearly with them (the world's linked segments), so the exact state at any instant inside a
+// step is known, and the velocities at the step's end are the mean plus a tail.
 #ifndef POOL_LINK_STEP_H
 #define POOL_LINK_STEP_H
 
@@ -46,6 +47,9 @@ typedef struct pool_link_step_stats {
 	                          ///< contact, cloth contacts included, after the step
 	double max_push;       ///< m/s, largest normal impulse / ball mass at a touching ball-ball or
 	                       ///< ball-cushion contact over the step (0: nothing presses: the closed forms can take over)
+	double max_contact_accel; ///< m/s^2, largest change the contacts (the LCP's impulses) made to a
+	                          ///< ball's horizontal velocity plus R times its spin's, over the step,
+	                          ///< / dt
 	int pivots;            ///< Lemke pivots
 	int warm;              ///< the warm start solved it
 	double residual;       ///< Lemke's relative complementarity residual
@@ -64,14 +68,17 @@ typedef struct pool_link_workspace {
 	double *ball_push; ///< m/s, its largest normal impulse / ball mass at a ball-ball or
 	                   ///< ball-cushion contact over the step (0: nothing presses it)
 	int *ball_touching; ///< its ball-ball and ball-cushion contacts touching at the step's start
+	double *ball_tail;  ///< 6 per ball (v, w): its velocity at the step's end less the mean
+	                    ///< velocity the step returns (half the explicit cloth wrenches)
 } pool_link_workspace;
 
 /// Frees the workspace's memory (with the allocator that made it).
 void pool_link_workspace_free(pool_link_workspace *ws, const pool_allocator *alloc);
 
 /// Advances the velocities of the n balls s[0..n) (states at the step's start, all in one
-/// cluster) over a step of dt > 0: on return s[k].vel and s[k].omega are the velocities over
-/// the step; positions are not changed (the caller advances them by dt * vel). In planar mode
+/// cluster) over a step of dt > 0: on return s[k].vel and s[k].omega are the mean velocities
+/// over the step (the caller advances the positions by dt * vel) and ws->ball_tail what turns
+/// them into the velocities at the step's end; positions are not changed. In planar mode
 /// (def->airborne false) the vertical velocity is returned as zero. Returns POOL_OK, or
 /// POOL_ERR_OUT_OF_MEMORY, or POOL_ERR_INTERNAL when Lemke fails or its residual check does (the
 /// states are then left unchanged: never silently wrong velocities).

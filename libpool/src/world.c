@@ -406,7 +406,11 @@ static pool_result process(pool_sim *sim, int slot) {
 		before[k] = s[k];
 	}
 	const pool_event_handler handle = pool_event_handler_for(type);
-	const int flags = handle ? handle(&ctx, type, s, count) : 0;
+	// Impulses act on touching balls only: a pair whose predicted meeting rounded to an instant
+	// at which it is already apart (beyond POOL_TOUCH_TOLERANCE) is a graze, predicted again.
+	const int apart = type == POOL_EVENT_BALL_BALL &&
+	                  pool_v3_len(pool_v3_sub(s[0].pos, s[1].pos)) - 2.0 * sim->def.params.ball_radius > POOL_TOUCH_TOLERANCE;
+	const int flags = handle && !apart ? handle(&ctx, type, s, count) : 0;
 	// A graze: the prediction found the pair touching while approaching by a rounding-level
 	// speed, and at the event they are already parting, so Petit's law gave no impulse and the
 	// states are unchanged. That is no collision: nothing is recorded (a player's "first ball

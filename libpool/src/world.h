@@ -43,6 +43,8 @@ typedef struct pool_body {
 	int cluster;              ///< LINK cluster the ball belongs to, or -1
 	int loose;                ///< the cluster's last step found nothing pressing it: it leaves
 	                          ///< the cluster at the next step
+	double tail[6];           ///< linked: velocity (v, w) at the step's end less the segment's mean
+	                          ///< (link_step.h ball_tail); zero after an interruption
 	pool_contact_streak streak[POOL_LINK_PARTNERS]; ///< recent collisions, for the LINK trigger
 } pool_body;
 
@@ -51,6 +53,7 @@ typedef struct pool_body {
 typedef struct pool_cluster {
 	int active;    ///< in use
 	double t_next; ///< s, the cluster's next step (INFINITY while it sleeps)
+	double dt;     ///< s, the length of its current step (POOL_LINK_STEP_TIME ... POOL_LINK_STEP_MAX)
 	int steps;     ///< steps taken
 	int quiet;     ///< the last step found every ball loose (pool_body.loose): the cluster
 	               ///< dissolves at its next step instead of solving again

@@ -15,6 +15,16 @@ extern "C" {
 /// hundred steps per second of contact.
 #define POOL_LINK_STEP_TIME 1e-3
 
+/// s, the longest link step. A step grows (doubling) while its contacts barely act: it is first
+/// order in the contact forces (a ball's position over a step is off by about 1/2 a dt^2 for a
+/// contact acceleration a), so the next step is at most sqrt(2 POOL_LINK_STEP_ERROR / a) long,
+/// and never shorter than POOL_LINK_STEP_TIME. Two balls rolling together, pressed by the
+/// difference of their rolling resistances (1e-3 m/s^2), take 16 ms steps instead of 1 ms ones;
+/// a push, a ball sliding on the cloth (mu_slide g) or resting on others (g) keeps 1 ms steps.
+#define POOL_LINK_STEP_MAX 16e-3
+/// m, the position error per step that bounds the growth of the steps (POOL_LINK_STEP_MAX).
+#define POOL_LINK_STEP_ERROR 1e-7
+
 /// Collisions of one pair (two balls, or a ball and a rail), at distinct instants within
 /// POOL_LINK_TRIGGER_WINDOW, that make the pair persistent contact and start a cluster. Exact
 /// impulses on a pushed contact form a Zeno series (ever closer collisions); a genuine second
