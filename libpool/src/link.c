@@ -254,6 +254,14 @@ static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, 
 /// the velocities stay exactly the LCP's, whose contacts they keep apart.)
 #define POOL_LINK_SETTLE_SPEED 1e-8
 
+/// Relative residual above which a step longer than POOL_LINK_STEP_TIME is taken again at
+/// that length. A solve's velocities are off by at most its residual times 1 + the cluster's
+/// speeds (link_step.h), and the positions by that times dt: the steps' own limit,
+/// POOL_LINK_RESIDUAL_MAX, over 16 ms would let balls into each other by 1.6e-8 m; 1e-9 keeps
+/// a long step's error below 1e-10 m, a tenth of POOL_TOUCH_TOLERANCE. (Lemke's residuals are
+/// 1e-16 to 1e-12 on most solves.)
+#define POOL_LINK_LONG_STEP_RESIDUAL 1e-9
+
 static void settle(const pool_sim *sim, pool_ball_state *s) {
 	const double R = sim->def.params.ball_radius;
 	const pool_vec3 w_perp = pool_v3(s->omega.x, s->omega.y, 0.0);
@@ -335,16 +343,29 @@ static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s
 		free_state[k].motion = POOL_MOTION_SLIDING;
 		pool_motion_after_impulse(&sim->def, &free_state[k]);
 	}
+	// A loose ball touching one that stays is held too when that one closes on it or presses
+	// it (the staying ball moving uniformly, as linked balls do): it would be hit at once.
 	const double reach = 2.0 * sim->def.params.ball_radius + POOL_LINK_TOUCH_GAP;
-	for (int a = 0; a < m; ++a)
-		for (int b = a + 1; b < m; ++b) {
-			pool_body *ba = &sim->body[idx[a]], *bb = &sim->body[idx[b]];
-			if (!ba->loose || !bb->loose || !(pool_v3_len(pool_v3_sub(s[a].pos, s[b].pos)) <= reach))
-				continue;
-			const pool_ball_state pair[2] = {free_state[a], free_state[b]};
-			if (pool_link_pressed_pair(sim, pair))
-				ba->loose = bb->loose = 0;
-		}
+	for (int changed = 1; changed;) {
+		changed = 0;
+		for (int a = 0; a < m; ++a)
+			for (int b = a + 1; b < m; ++b) {
+				pool_body *ba = &sim->body[idx[a]], *bb = &sim->body[idx[b]];
+				if ((!ba->loose && !bb->loose) || !(pool_v3_len(pool_v3_sub(s[a].pos, s[b].pos)) <= reach))
+					continue;
+				pool_ball_state pair[2] = {free_state[a], free_state[b]};
+				if (!ba->loose)
+					pair[0].motion = POOL_MOTION_LINKED;
+				if (!bb->loose)
+					pair[1].motion = POOL_MOTION_LINKED;
+				const pool_vec3 d = pool_v3_sub(pair[0].pos, pair[1].pos);
+				const double closing = -pool_v3_dot(d, pool_v3_sub(pair[0].vel, pair[1].vel)) / pool_v3_len(d);
+				if (closing > POOL_APPROACH_EPS || pool_link_pressed_pair(sim, pair)) {
+					changed |= ba->loose | bb->loose;
+					ba->loose = bb->loose = 0;
+				}
+			}
+	}
 }
 
 // The length of the step after one of length dt whose contacts accelerated a ball by at most
@@ -396,7 +417,16 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	for (int k = 0; k < m; ++k)
 		step_end_state(sim, idx[k], t, &s[k]);
 	pool_link_step_stats st;
-	const pool_result r = pool_link_step(&sim->def, s, m, cl->dt, &sim->link_ws, &sim->alloc, &st);
+	pool_result r = pool_link_step(&sim->def, s, m, cl->dt, &sim->link_ws, &sim->alloc, &st);
+	if (r == POOL_OK && cl->dt > POOL_LINK_STEP_TIME && st.residual > POOL_LINK_LONG_STEP_RESIDUAL) {
+		// A long step moves the balls by its velocity error times dt: one the solve left less
+		// accurate is taken again at POOL_LINK_STEP_TIME.
+		sim->link_stats.pivots += st.pivots;
+		cl->dt = POOL_LINK_STEP_TIME;
+		for (int k = 0; k < m; ++k)
+			step_end_state(sim, idx[k], t, &s[k]);
+		r = pool_link_step(&sim->def, s, m, cl->dt, &sim->link_ws, &sim->alloc, &st);
+	}
 	if (r)
 		return r;
 	pool_link_stats *total = &sim->link_stats;
@@ -408,6 +438,7 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	total->max_residual = fmax(total->max_residual, st.residual);
 	cl->steps++;
 	const int still = all_still(sim, s, m);
+	const double this_dt = cl->dt;
 	// A ball nothing presses leaves at the next step: on the cloth the closed forms take over
 	// its contacts (two balls rolling together in contact stay so by themselves; if friction
 	// presses them again, the trigger links them again), above it only once it touches
@@ -415,7 +446,8 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	// sleeps instead.
 	for (int k = 0; k < m; ++k) {
 		const int on_cloth = s[k].pos.z <= sim->def.params.ball_radius + POOL_TOUCH_TOLERANCE;
-		const int unpressed = sim->link_ws.ball_push[k] <= POOL_LINK_REST_SPEED;
+		// (the push of a step of dt: POOL_LINK_PUSH_MIN per POOL_LINK_STEP_TIME)
+		const int unpressed = sim->link_ws.ball_push[k] <= POOL_LINK_PUSH_MIN * (this_dt / POOL_LINK_STEP_TIME);
 		sim->body[idx[k]].loose = (on_cloth && (unpressed || still)) || (unpressed && sim->link_ws.ball_touching[k] == 0);
 	}
 	hold_pressed(sim, idx, s, m);
@@ -423,7 +455,6 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	for (int k = 0; k < m; ++k)
 		leaving += sim->body[idx[k]].loose;
 	cl->quiet = leaving == m;
-	const double this_dt = cl->dt;
 	cl->t_next = still && leaving == 0 ? INFINITY : t + this_dt;
 	cl->dt = next_step_length(this_dt, st.max_contact_accel);
 	for (int k = 0; k < m; ++k) {

@@ -38,12 +38,19 @@ extern "C" {
 /// s, the window of POOL_LINK_TRIGGER_COLLISIONS.
 #define POOL_LINK_TRIGGER_WINDOW 0.05
 
-/// m/s: a cluster on the cloth whose contacts press less than this over a step (normal impulse
-/// / ball mass) dissolves: the closed forms take over (spheres rolling together in contact never
-/// stop by themselves, and need no contact force to stay together). A cluster resting above the
-/// cloth (a ball on two others) sleeps, taking no more steps until something hits it, once every
-/// ball moves and spins (|w| R) slower than this.
+/// m/s: a cluster resting above the cloth (a ball on two others) sleeps, taking no more steps
+/// until something hits it, once every ball moves and spins (|w| R) slower than this; on the
+/// cloth such a cluster dissolves. A ball touching a cluster joins it when it closes on one of
+/// its balls faster than this.
 #define POOL_LINK_REST_SPEED 1e-5
+
+/// m/s of normal impulse / ball mass per POOL_LINK_STEP_TIME (an acceleration of 1e-5 m/s^2, a
+/// millionth of g): a ball of a cluster whose ball-ball and cushion contacts press it less than
+/// this over a step leaves the cluster (on the cloth; above it once it touches nothing) and
+/// resumes its closed-form state, and a cluster dissolves when all its balls do. Spheres
+/// rolling together in contact need no contact force to stay so; a ball at the end of a chain
+/// that the cluster presses, however weakly, stays (released, it would be hit at once).
+#define POOL_LINK_PUSH_MIN 1e-8
 
 /// What the LINK steps of a shot did.
 typedef struct pool_link_stats {
