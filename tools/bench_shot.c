@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/resource.h>
 
+#include <pool/link.h>
 #include <pool/pool.h>
 
 #include "bench_util.h"
@@ -50,7 +51,7 @@ static int run(pool_sim *sim, const shot *s, int *events) {
 // Times `runs` runs over the shot list (cycled); prints median / min per shot and events/s.
 // t holds `runs` doubles (allocated before the memory baseline).
 static int measure(pool_sim *sim, const char *name, const shot *shots, int count, int runs, double *t) {
-	long events = 0;
+	long events = 0, link_steps = 0;
 	double total = 0.0;
 	for (int r = 0; r < runs; ++r) {
 		int ev = 0;
@@ -62,10 +63,15 @@ static int measure(pool_sim *sim, const char *name, const shot *shots, int count
 		t[r] = pool_bench_now_s() - t0;
 		total += t[r];
 		events += ev;
+		pool_link_stats ls;
+		if (pool_sim_link_stats(sim, &ls) == POOL_OK)
+			link_steps += ls.steps;
 	}
 	pool_bench_summary sum = pool_bench_summarise(t, (size_t)runs);
-	printf("%-28s runs %6d  median %8.1f us  min %8.1f us  events/shot %6.1f  events/s %.3g\n", name,
-	       runs, 1e6 * sum.median, 1e6 * sum.min, (double)events / runs, (double)events / total);
+	printf("%-34s runs %6d  median %8.1f us  min %8.1f us  mean %8.1f us  events/shot %6.1f  link steps/shot %5.1f  "
+	       "events/s %.3g\n",
+	       name, runs, 1e6 * sum.median, 1e6 * sum.min, 1e6 * total / runs, (double)events / runs,
+	       (double)link_steps / runs, (double)events / total);
 	fflush(stdout);
 	return 0;
 }
@@ -118,10 +124,12 @@ int main(int argc, char **argv) {
 			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
 			       "  post-break        random strikes (0.5-6 m/s, spin, elevation) on the tables\n"
 			       "                    that breaks leave\n"
+			       "  random breaks     500 frozen-rack breaks at 1-8 m/s, aimed up to 3 deg off the\n"
+			       "                    apex (slow, off-centre breaks leave balls pushing: LINK)\n"
 			       "  jump (airborne)   a 5 m/s cue at 45 deg clearing a blocking ball\n"
 			       "  break (airborne)  the 0.1 mm break with the cue elevated 5 deg, airborne motion\n"
-			       "Prints median and minimum time per shot over N runs (default 2000), events per\n"
-			       "second, the library's peak heap bytes and allocation count before and after the\n"
+			       "Prints median, minimum and mean time per shot over N runs (default 2000), events\n"
+			       "and LINK steps per shot, events per second, the library's peak heap bytes and allocation count before and after the\n"
 			       "runs (they must not grow), the process's peak resident memory, and the machine.\n");
 			return 0;
 		}
@@ -192,6 +200,17 @@ int main(int argc, char **argv) {
 			post[count++] = s;
 		}
 	}
+	// Random frozen breaks: the 15-ball rack, gap 0, the cue at 1-8 m/s aimed up to 3 degrees off
+	// the apex (slow and off-centre breaks leave balls pushing each other: LINK's share).
+	enum { RANDOM_BREAKS = 500 };
+	shot *breaks = malloc(sizeof *breaks * RANDOM_BREAKS);
+	if (!breaks)
+		return 1;
+	for (int k = 0; k < RANDOM_BREAKS; ++k) {
+		breaks[k] = frozen;
+		breaks[k].strike = pool_break_strike(1.0 + 7.0 * urand());
+		breaks[k].strike.phi = (2.0 * urand() - 1.0) * 3.0 * 3.14159265358979323846 / 180.0;
+	}
 	// Warm up (allocations reach their final size), then measure.
 	double *times = malloc(sizeof *times * (size_t)runs * 5);
 	if (!times)
@@ -224,11 +243,14 @@ int main(int argc, char **argv) {
 	run(sim, &frozen, &ev);
 	for (int i = 0; i < count; ++i)
 		run(sim, &post[i], &ev);
+	for (int i = 0; i < RANDOM_BREAKS; ++i)
+		run(sim, &breaks[i], &ev);
 	long rss_before = maxrss_kib(), allocs_before = lib_allocs;
 	size_t peak_before = lib_peak_bytes;
 	if (measure(sim, "break-frozen (8 m/s)", &frozen, 1, runs, times) ||
 	    measure(sim, "break-gap-0.1mm (8 m/s)", &gap, 1, runs, times) ||
-	    measure(sim, "post-break random shots", post, count, runs * 5, times))
+	    measure(sim, "post-break random shots", post, count, runs * 5, times) ||
+	    measure(sim, "random frozen breaks (1-8 m/s)", breaks, RANDOM_BREAKS, runs, times))
 		return 1;
 	if (measure(air, "jump (airborne, 5 m/s, 45 deg)", &jump, 1, runs, times) ||
 	    measure(air, "break-gap-0.1mm (airborne, 5 deg)", &air_break, 1, runs, times))
@@ -237,12 +259,13 @@ int main(int argc, char **argv) {
 	long rss_after = maxrss_kib();
 	printf("library heap: peak %zu bytes after warm-up, %zu bytes after %d more shots (one pool_sim reused); "
 	       "library allocations during the runs: %ld\n",
-	       peak_before, lib_peak_bytes, runs * 9, lib_allocs - allocs_before);
+	       peak_before, lib_peak_bytes, runs * 10, lib_allocs - allocs_before);
 	printf("process peak resident memory (getrusage, includes the benchmark's own buffers): %ld KiB after "
 	       "warm-up, %ld KiB after the runs\n",
 	       rss_before, rss_after);
 	free(times);
 	free(post);
+	free(breaks);
 	pool_sim_destroy(sim);
 	return 0;
 }

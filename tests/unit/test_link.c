@@ -16,6 +16,7 @@
 
 #include "pool/pool.h"
 #include "link_step.h"
+#include "motion.h"
 #include "vec3.h"
 
 #ifndef M_PI
@@ -28,12 +29,17 @@
 #define MAX_PENETRATION 1e-6
 /// J, rounding of energy sums of a few joules.
 #define ENERGY_ROUNDING 1e-12
+/// m: a position evaluated from two segments' polynomials at one instant (table scale, times
+/// of seconds: 1e-15 relative rounding of terms up to metres).
+#define POSITION_ROUNDING 1e-12
 
 typedef struct scene_report {
 	double overlap;  // m, worst interpenetration of two balls, sampled between events
 	double outside;  // m, worst centre distance beyond a cushion contact line (balls in play)
 	double gain;     // J, worst rise of the total energy (kinetic + potential) between samples
 	double total_gain; // J, final energy minus initial (worst over samples)
+	double jump;     // m, worst jump of a ball's position at an event: its recorded state against
+	                 // its previous recorded state's motion up to the event
 	int events, link_begin, link_step, link_end;
 	pool_stop_reason stop;
 	double end_time;
@@ -115,6 +121,31 @@ static scene_report run_scene(pool_sim *sim, const pool_sim_def *def) {
 	r.events = count;
 	r.stop = pool_sim_stop_reason(sim);
 	r.end_time = pool_sim_end_time(sim);
+	// Positions are continuous: every event records each ball where its previous recorded
+	// state's motion has brought it (pool_sim_state_at evolves each recorded state from its
+	// event's time).
+	pool_ball_state last[MAX_BALLS];
+	double t_last[MAX_BALLS];
+	const int n = pool_sim_ball_count(sim);
+	assert_true(n <= MAX_BALLS);
+	assert_int_equal(pool_sim_state_at(sim, 0.0, last), POOL_OK);
+	for (int i = 0; i < n; ++i)
+		t_last[i] = 0.0;
+	r.jump = 0.0;
+	for (int k = 0; k < count; ++k) {
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[k]);
+		for (int b = 0; b < ev[k].ball_count; ++b) {
+			int i = 0;
+			while (i < n && last[i].id != after[b].id)
+				++i;
+			assert_true(i < n);
+			pool_ball_state expected;
+			pool_motion_evolve(&def->params, &last[i], ev[k].time - t_last[i], &expected);
+			r.jump = fmax(r.jump, pool_v3_len(pool_v3_sub(expected.pos, after[b].pos)));
+			last[i] = after[b];
+			t_last[i] = ev[k].time;
+		}
+	}
 	double e0, prev;
 	sample(sim, def, 0.0, &r, &e0);
 	prev = e0;
@@ -147,10 +178,10 @@ static scene_report run_scene(pool_sim *sim, const pool_sim_def *def) {
 }
 
 static void print_report(const char *what, const scene_report *r) {
-	printf("%-28s events %6d  link begin/step/end %d/%d/%d  overlap %.2e m  outside %.2e m  energy rise %.2e J "
-	       "(total %.2e J)  stop %d at %.3f s\n",
-	       what, r->events, r->link_begin, r->link_step, r->link_end, r->overlap, r->outside, r->gain, r->total_gain,
-	       (int)r->stop, r->end_time);
+	printf("%-28s events %6d  link begin/step/end %d/%d/%d  overlap %.2e m  outside %.2e m  jump %.1e m  energy rise "
+	       "%.2e J (total %.2e J)  stop %d at %.3f s\n",
+	       what, r->events, r->link_begin, r->link_step, r->link_end, r->overlap, r->outside, r->jump, r->gain,
+	       r->total_gain, (int)r->stop, r->end_time);
 }
 
 // The invariants every scene holds. `step_gain` is the energy a step may add (J, 0 in planar
@@ -162,6 +193,8 @@ static void check_invariants(const char *what, const scene_report *r, double ste
 		fail_msg("%s: the shot did not end (stop reason %d after %d events)", what, (int)r->stop, r->events);
 	if (r->overlap > MAX_PENETRATION)
 		fail_msg("%s: balls interpenetrate by %.3g m", what, r->overlap);
+	if (r->jump > POSITION_ROUNDING)
+		fail_msg("%s: a ball's position jumps by %.3g m at an event", what, r->jump);
 	if (r->outside > MAX_PENETRATION)
 		fail_msg("%s: a ball is %.3g m beyond a cushion contact line", what, r->outside);
 	if (r->gain > step_gain + ENERGY_ROUNDING)
