@@ -420,19 +420,31 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 	if (!link_shares.empty())
 		rec.link_cpu_share = median(link_shares);
 
-	// Predictability: how far the outcome moves when the lead ball starts 1 um elsewhere.
+	// Predictability: how far the outcome moves when the lead ball starts 1 um elsewhere. A
+	// direction that puts it into a ball it touches (a ball resting on two others) is no
+	// scenario at all: the engine refuses it, and that direction is left out.
 	if (settings.spread_runs > 0) {
 		const int id = scenario.lead_ball_id();
 		const int n = settings.spread_runs;
 		Eigen::MatrixXd change(n, static_cast<Eigen::Index>(final_balls.size()));
+		int valid = 0;
+		std::string refused;
 		for (int k = 0; k < n; ++k) {
 			const double angle = 2.0 * M_PI * k / n;
 			const std::string json = perturbed_json(scenario.json, id, settings.perturbation * std::cos(angle),
 			                                        settings.perturbation * std::sin(angle));
 			EngineRun run(plugin);
 			std::string error;
-			if (json.empty() || !run.create(json, settings.dt, &error) || !run.finish(ref, max_time, &error)) {
-				rec.error = "perturbed run " + std::to_string(k) + ": " + (json.empty() ? "bad scenario" : error);
+			if (json.empty()) {
+				rec.error = "perturbed run " + std::to_string(k) + ": bad scenario";
+				return rec;
+			}
+			if (!run.create(json, settings.dt, &error)) {
+				refused = "perturbed run " + std::to_string(k) + ": " + error;
+				continue;
+			}
+			if (!run.finish(ref, max_time, &error)) {
+				rec.error = "perturbed run " + std::to_string(k) + ": " + error;
 				return rec;
 			}
 			std::vector<BallSample> balls;
@@ -445,13 +457,19 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 				for (const BallSample &s : balls)
 					if (s.id == final_balls[b].id)
 						d = (s.pos - final_balls[b].pos).head<2>().norm();
-				change(k, static_cast<Eigen::Index>(b)) = d;
+				change(valid, static_cast<Eigen::Index>(b)) = d;
 			}
+			++valid;
 		}
-		rec.spread_runs = n;
+		if (valid == 0) {
+			rec.error = refused;
+			return rec;
+		}
+		const Eigen::MatrixXd used = change.topRows(valid);
+		rec.spread_runs = valid;
 		rec.spread_perturbation = settings.perturbation;
-		rec.spread_rms = std::sqrt(change.squaredNorm() / static_cast<double>(change.size()));
-		rec.spread_max = change.maxCoeff();
+		rec.spread_rms = std::sqrt(used.squaredNorm() / static_cast<double>(used.size()));
+		rec.spread_max = used.maxCoeff();
 	}
 	return rec;
 }
