@@ -256,6 +256,41 @@ static void test_pushed_pair_closed_form(void **state) {
 // so N_c = m g dc / (dc - mu (h - R)) and the spin stops at T = (2/5) m R w0 / (mu N_c). The
 // polyhedral cone's friction is at least cos(pi / eta) of the circular cone's, so T is read with
 // that factor plus two steps.
+// The pushed pair with a third ball at rest touching the cue ball from behind, 45 degrees off
+// the line. It touches without being pressed (the pair moves away from it), so nothing acts on
+// it: it must stay exactly where it is, in no event and no cluster (a cluster of every touching
+// ball would take it in and step it with the pair).
+static void test_touching_ball_left_out(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.params.mu_ball = 0.0;
+	const double R = def.params.ball_radius, v = 0.5;
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
+	const pool_ball_state side = ball(2, 0.6 - sqrt(2.0) * R, 0.635 + sqrt(2.0) * R, R);
+	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
+	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
+	add(sim, &cue);
+	add(sim, &obj);
+	add(sim, &side);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("touching ball left out", &r, 0.0, 0.0);
+	assert_true(r.link_begin >= 1); // the pair is linked
+	int count = 0;
+	const pool_event *ev = pool_sim_events(sim, &count);
+	for (int k = 0; k < count; ++k) {
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[k]);
+		for (int b = 0; b < ev[k].ball_count; ++b)
+			if (after[b].id == 2 && ev[k].type != POOL_EVENT_STRIKE)
+				fail_msg("the side ball is in event %d (%s at %.6f s)", k, pool_event_type_name(ev[k].type),
+				         ev[k].time);
+	}
+	const pool_ball_state *final = pool_sim_balls(sim);
+	assert_true(final[2].pos.x == side.pos.x && final[2].pos.y == side.pos.y);
+	assert_int_equal(final[2].motion, POOL_MOTION_STATIONARY);
+	pool_sim_destroy(sim);
+}
+
 static void test_pinned_to_rail_closed_form(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
@@ -393,7 +428,8 @@ static void test_deterministic(void **state) {
 
 int main(void) {
 	const struct CMUnitTest tests[] = {
-	    cmocka_unit_test(test_pushed_pair_closed_form), cmocka_unit_test(test_pinned_to_rail_closed_form),
+	    cmocka_unit_test(test_pushed_pair_closed_form), cmocka_unit_test(test_touching_ball_left_out),
+	    cmocka_unit_test(test_pinned_to_rail_closed_form),
 	    cmocka_unit_test(test_ball_on_two),             cmocka_unit_test(test_landing_on_a_ball),
 	    cmocka_unit_test(test_follow_into_a_line),      cmocka_unit_test(test_low_restitution_line),
 	    cmocka_unit_test(test_deterministic),
