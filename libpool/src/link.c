@@ -85,16 +85,21 @@ static void join(pool_sim *sim, int i, int c, double t) {
 
 void pool_link_adopt(pool_sim *sim, int i, int c, double t) { join(sim, i, c, t); }
 
-int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
-	const pool_params *p = &sim->def.params;
+// pool_link_pressed_pair with the two balls' accelerations given.
+static int pressed_with(const pool_ball_state *s, pool_vec3 a0, pool_vec3 a1) {
 	const pool_vec3 d = pool_v3_sub(s[0].pos, s[1].pos);
 	const double dist = pool_v3_len(d);
 	const pool_vec3 n = pool_v3_scale(d, 1.0 / dist);
 	const pool_vec3 dv = pool_v3_sub(s[0].vel, s[1].vel);
-	const pool_vec3 da = pool_v3_sub(pool_motion_accel(p, &s[0]), pool_motion_accel(p, &s[1]));
+	const pool_vec3 da = pool_v3_sub(a0, a1);
 	const double vn = pool_v3_dot(n, dv);
 	const double approach_accel = -pool_v3_dot(n, da) - (pool_v3_dot(dv, dv) - vn * vn) / dist;
 	return approach_accel > 0.0;
+}
+
+int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
+	const pool_params *p = &sim->def.params;
+	return pressed_with(s, pool_motion_accel(p, &s[0]), pool_motion_accel(p, &s[1]));
 }
 
 // Every ball in play touching one of cluster c's balls at t and closing on it (faster than
@@ -205,19 +210,16 @@ static int all_still(const pool_sim *sim, const pool_ball_state *s, int m) {
 	return 1;
 }
 
-// Balls of s[0..m) that touch and move together to within POOL_APPROACH_EPS (velocity, and
-// spin's surface speed) get their group's mean velocity and spin, exactly the same doubles:
-// two balls rolling together in contact then decelerate identically in closed form and never
-// meet again, where the rounding of the LCP's solution (1e-14 m/s) would make them "collide"
-// by nothing at every event. The mean keeps momentum and never adds energy.
-static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, int *group) {
+// Groups (in group[0..m)) the balls of s[0..m) that touch and whose velocities, and with
+// `spin_too` their spins' surface speeds, agree to within POOL_APPROACH_EPS.
+static void group_common(const pool_sim *sim, const pool_ball_state *s, int m, int spin_too, int *group) {
 	const double R = sim->def.params.ball_radius, reach = 2.0 * R + POOL_LINK_TOUCH_GAP;
 	for (int k = 0; k < m; ++k)
 		group[k] = k;
 	for (int a = 0; a < m; ++a)
 		for (int b = a + 1; b < m; ++b) {
 			const double dv = pool_v3_len(pool_v3_sub(s[a].vel, s[b].vel));
-			const double dw = pool_v3_len(pool_v3_sub(s[a].omega, s[b].omega)) * R;
+			const double dw = spin_too ? pool_v3_len(pool_v3_sub(s[a].omega, s[b].omega)) * R : 0.0;
 			if (pool_v3_len(pool_v3_sub(s[a].pos, s[b].pos)) > reach || dv > POOL_APPROACH_EPS || dw > POOL_APPROACH_EPS)
 				continue;
 			const int ga = group[a], gb = group[b];
@@ -225,24 +227,32 @@ static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, 
 				if (group[k] == gb)
 					group[k] = ga;
 		}
-	for (int g = 0; g < m; ++g) {
-		pool_vec3 v = {0.0, 0.0, 0.0}, w = {0.0, 0.0, 0.0};
-		int count = 0;
-		for (int k = 0; k < m; ++k)
-			if (group[k] == g) {
-				v = pool_v3_add(v, s[k].vel);
-				w = pool_v3_add(w, s[k].omega);
-				count++;
-			}
-		if (count < 2)
-			continue;
-		v = pool_v3_scale(v, 1.0 / count);
-		w = pool_v3_scale(w, 1.0 / count);
-		for (int k = 0; k < m; ++k)
-			if (group[k] == g) {
-				s[k].vel = v;
-				s[k].omega = w;
-			}
+}
+
+// Balls of s[0..m) that touch and move together to within POOL_APPROACH_EPS get their group's
+// mean velocity, exactly the same doubles, and those whose spins agree too the group's mean
+// spin: two balls rolling (or sliding) together in contact then decelerate identically in
+// closed form and never meet again, where the rounding of the LCP's solution (1e-14 m/s)
+// would make them "collide" by nothing at every event. The means keep momentum and never add
+// energy.
+static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, int *group) {
+	for (int pass = 0; pass < 2; ++pass) {
+		group_common(sim, s, m, pass, group);
+		for (int g = 0; g < m; ++g) {
+			pool_vec3 mean = {0.0, 0.0, 0.0};
+			int count = 0;
+			for (int k = 0; k < m; ++k)
+				if (group[k] == g) {
+					mean = pool_v3_add(mean, pass ? s[k].omega : s[k].vel);
+					count++;
+				}
+			if (count < 2)
+				continue;
+			mean = pool_v3_scale(mean, 1.0 / count);
+			for (int k = 0; k < m; ++k)
+				if (group[k] == g)
+					*(pass ? &s[k].omega : &s[k].vel) = mean;
+		}
 	}
 }
 
@@ -329,13 +339,15 @@ static pool_result pocket_strays(pool_sim *sim, int c, double t) {
 // would press together again at once stay linked: leaving, they would collide at once with
 // nothing to part them and the trigger would link them again, one cluster per step where one
 // cluster holds them.
-static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s, int m) {
+static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s, int m, double dt) {
 	pool_ball_state *free_state = sim->link_leaving;
 	for (int k = 0; k < m; ++k) {
 		const double *tail = sim->link_ws.ball_tail + 6 * k;
 		free_state[k] = s[k];
 		free_state[k].vel = pool_v3_add(s[k].vel, pool_v3(tail[0], tail[1], tail[2]));
 		free_state[k].omega = pool_v3_add(s[k].omega, pool_v3(tail[3], tail[4], tail[5]));
+		// link_accel held the velocity at the step's start (pool_link_step_event)
+		sim->link_accel[k] = pool_v3_scale(pool_v3_sub(free_state[k].vel, sim->link_accel[k]), 1.0 / dt);
 	}
 	merge_common_motion(sim, free_state, m, sim->work); // as release() would
 	for (int k = 0; k < m; ++k) {
@@ -353,14 +365,13 @@ static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s
 				pool_body *ba = &sim->body[idx[a]], *bb = &sim->body[idx[b]];
 				if ((!ba->loose && !bb->loose) || !(pool_v3_len(pool_v3_sub(s[a].pos, s[b].pos)) <= reach))
 					continue;
-				pool_ball_state pair[2] = {free_state[a], free_state[b]};
-				if (!ba->loose)
-					pair[0].motion = POOL_MOTION_LINKED;
-				if (!bb->loose)
-					pair[1].motion = POOL_MOTION_LINKED;
+				// A staying ball goes on as its last step did (its acceleration over it).
+				const pool_ball_state pair[2] = {free_state[a], free_state[b]};
+				const pool_vec3 aa = ba->loose ? pool_motion_accel(&sim->def.params, &pair[0]) : sim->link_accel[a];
+				const pool_vec3 ab = bb->loose ? pool_motion_accel(&sim->def.params, &pair[1]) : sim->link_accel[b];
 				const pool_vec3 d = pool_v3_sub(pair[0].pos, pair[1].pos);
 				const double closing = -pool_v3_dot(d, pool_v3_sub(pair[0].vel, pair[1].vel)) / pool_v3_len(d);
-				if (closing > POOL_APPROACH_EPS || pool_link_pressed_pair(sim, pair)) {
+				if (closing > POOL_APPROACH_EPS || pressed_with(pair, aa, ab)) {
 					changed |= ba->loose | bb->loose;
 					ba->loose = bb->loose = 0;
 				}
@@ -416,6 +427,8 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	}
 	for (int k = 0; k < m; ++k)
 		step_end_state(sim, idx[k], t, &s[k]);
+	for (int k = 0; k < m; ++k)
+		sim->link_accel[k] = s[k].vel;
 	pool_link_step_stats st;
 	pool_result r = pool_link_step(&sim->def, s, m, cl->dt, &sim->link_ws, &sim->alloc, &st);
 	if (r == POOL_OK && cl->dt > POOL_LINK_STEP_TIME && st.residual > POOL_LINK_LONG_STEP_RESIDUAL) {
@@ -450,7 +463,7 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 		const int unpressed = sim->link_ws.ball_push[k] <= POOL_LINK_PUSH_MIN * (this_dt / POOL_LINK_STEP_TIME);
 		sim->body[idx[k]].loose = (on_cloth && (unpressed || still)) || (unpressed && sim->link_ws.ball_touching[k] == 0);
 	}
-	hold_pressed(sim, idx, s, m);
+	hold_pressed(sim, idx, s, m, cl->dt);
 	int leaving = 0;
 	for (int k = 0; k < m; ++k)
 		leaving += sim->body[idx[k]].loose;

@@ -133,7 +133,7 @@ void pool_sim_destroy(pool_sim *sim) {
 	const pool_allocator a = sim->alloc;
 	void *arrays[] = {sim->cur,    sim->body,        sim->keys,        sim->heap,        sim->hpos,
 	                  sim->work,   sim->clusters,    sim->link_states, sim->link_members, sim->events,
-	                  sim->states, sim->state_time,  sim->state_prev, sim->link_leaving};
+	                  sim->states, sim->state_time,  sim->state_prev, sim->link_leaving, sim->link_accel};
 	pool_link_workspace_free(&sim->link_ws, &a);
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
 		mem_free(&a, arrays[i]);
@@ -188,12 +188,12 @@ static pool_result reserve_balls(pool_sim *sim, int need) {
 	void **arrays[] = {(void **)&sim->cur,      (void **)&sim->body,        (void **)&sim->keys,
 	                   (void **)&sim->heap,     (void **)&sim->hpos,        (void **)&sim->work,
 	                   (void **)&sim->clusters, (void **)&sim->link_states, (void **)&sim->link_members,
-	                   (void **)&sim->link_leaving};
+	                   (void **)&sim->link_leaving, (void **)&sim->link_accel};
 	const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body),       sizeof(pool_event_key),
 	                        sizeof(int),             sizeof(int),             sizeof(int),
 	                        sizeof(pool_cluster),    sizeof(pool_ball_state), sizeof(int),
-	                        sizeof(pool_ball_state)};
-	pool_result r = grow_arrays(sim, arrays, elems, 10, sim->n, cap);
+	                        sizeof(pool_ball_state), sizeof(pool_vec3)};
+	pool_result r = grow_arrays(sim, arrays, elems, 11, sim->n, cap);
 	if (r == POOL_OK)
 		sim->cap_balls = cap;
 	return r;

@@ -75,6 +75,7 @@ struct pool_sim {
 	pool_ball_state *link_states;   // scratch of a link step, cap_balls
 	int *link_members;              // scratch of a link step, cap_balls
 	pool_ball_state *link_leaving;  // scratch of a link step: the states leaving balls would get
+	pool_vec3 *link_accel;          // scratch of a link step: each ball's acceleration over it
 	pool_link_workspace link_ws;    // the steps' LCP memory, reused
 	pool_link_stats link_stats;     // this shot's
 	pool_result failed;             // a link step's solve failed: the shot cannot go on
