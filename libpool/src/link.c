@@ -1,5 +1,5 @@
-// LINK clusters in the world (link.h): the trigger, forming and merging clusters, their steps,
-// and their dissolution.
+// LINK clusters in the world (link.h): the trigger, forming and merging clusters, their steps
+// and their lengths, balls leaving them, and their dissolution.
 #include "link.h"
 
 #include <math.h>

@@ -1,12 +1,13 @@
 // LINK clusters in the world (PHYSICS.md "LINK"). Where pairwise impulses break down (a ball
 // pushing another, resting on two, pinned to a rail), the pair's collision history triggers a
-// cluster: the linker and every ball touching it, transitively. The cluster is one body of the
-// schedule: its balls share one step event and, over a step, move uniformly with the velocities
-// of the step's LCP (link_step.h), so the exact state at any instant stays known and the balls
-// outside keep predicting contacts against them. A step ends early when an event from outside
-// reaches one of its balls (the cluster steps again at that instant). A cluster dissolves when its
-// balls no longer touch, or when every contact is at rest on the cloth; its balls resume their
-// closed-form states.
+// cluster: the linker and every ball touching and closing on it, transitively; a ball that hits
+// a cluster's ball joins it. The cluster is one body of the schedule: its balls share one step
+// event and, over a step, move uniformly with the step's mean velocities (link_step.h), so the
+// exact state at any instant stays known and the balls outside keep predicting contacts against
+// them. A step ends early when an event from outside reaches one of its balls (the cluster
+// steps again at that instant); steps grow from 1 to 16 ms while the contacts barely act. A ball
+// that nothing presses leaves the cluster and resumes its closed-form state; the cluster
+// dissolves when all of them have.
 #ifndef POOL_LINK_INTERNAL_H
 #define POOL_LINK_INTERNAL_H
 

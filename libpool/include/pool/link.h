@@ -9,10 +9,11 @@
 extern "C" {
 #endif
 
-/// s, the length of a link step (a step ends earlier when an event from outside reaches one of
-/// the cluster's balls). Contacts inside a cluster are resolved to first order in it: 1 ms
-/// keeps a pushed ball's path within a millimetre of the limit (docs/measurements.md) at a few
-/// hundred steps per second of contact.
+/// s, the length of a link step where the contacts act (a step ends earlier when an event from
+/// outside reaches one of the cluster's balls, and grows up to POOL_LINK_STEP_MAX where they
+/// barely act). Contacts inside a cluster are resolved to first order in it: 1 ms keeps a
+/// pushed ball's path within a millimetre of the limit (docs/measurements.md) at a few hundred
+/// steps per second of contact.
 #define POOL_LINK_STEP_TIME 1e-3
 
 /// s, the longest link step. A step grows (doubling) while its contacts barely act: it is first
