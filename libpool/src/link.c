@@ -3,6 +3,7 @@
 #include "link.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "contact.h"
 #include "geometry.h"
@@ -51,13 +52,23 @@ static int members(const pool_sim *sim, int c, int *out) {
 	return m;
 }
 
-// Linked ball i's state at t, the end of its step: the segment's mean velocity plus the step's
-// tail (link_step.h; zero after an interruption).
-static void step_end_state(const pool_sim *sim, int i, double t, pool_ball_state *s) {
-	pool_world_state_now(sim, i, t, s);
-	const double *tail = sim->body[i].tail;
+// Adds a step's tail (link_step.h: v, then w) to s's velocities.
+static void add_tail(pool_ball_state *s, const double *tail) {
 	s->vel = pool_v3_add(s->vel, pool_v3(tail[0], tail[1], tail[2]));
 	s->omega = pool_v3_add(s->omega, pool_v3(tail[3], tail[4], tail[5]));
+}
+
+// Ball b keeps its linked segment's mean velocities (the tail is dropped, or not yet known).
+static void drop_tail(pool_body *b) {
+	for (int e = 0; e < 6; ++e)
+		b->tail[e] = 0.0;
+}
+
+// Linked ball i's state at t, the end of its step: the segment's mean velocity plus the step's
+// tail (zero after an interruption).
+static void step_end_state(const pool_sim *sim, int i, double t, pool_ball_state *s) {
+	pool_world_state_now(sim, i, t, s);
+	add_tail(s, sim->body[i].tail);
 }
 
 // Ball i joins cluster c at t: it (or the whole cluster it is in) starts linked segments there.
@@ -78,8 +89,7 @@ static void join(pool_sim *sim, int i, int c, double t) {
 	s.motion = POOL_MOTION_LINKED;
 	b->cluster = c;
 	b->loose = 0;
-	for (int e = 0; e < 6; ++e)
-		b->tail[e] = 0.0;
+	drop_tail(b);
 	pool_schedule_begin_segment(sim, i, &s, t);
 }
 
@@ -162,8 +172,7 @@ static void unsettle(pool_sim *sim, int c) {
 	for (int k = 0; k < sim->n; ++k)
 		if (sim->body[k].cluster == c) {
 			sim->body[k].loose = 0;
-			for (int e = 0; e < 6; ++e)
-				sim->body[k].tail[e] = 0.0;
+			drop_tail(&sim->body[k]);
 		}
 }
 
@@ -284,6 +293,18 @@ static void settle(const pool_sim *sim, pool_ball_state *s) {
 		s->omega.z = 0.0;
 }
 
+// Turns the end-of-step states s[0..m) of balls leaving a cluster together into the closed-form
+// states they resume: balls moving together share their motion, a crawling ball on the cloth
+// settles, and the on-cloth state of the velocities is derived (airborne above the cloth).
+static void leaving_states(pool_sim *sim, pool_ball_state *s, int m) {
+	merge_common_motion(sim, s, m, sim->work);
+	for (int k = 0; k < m; ++k) {
+		settle(sim, &s[k]);
+		s[k].motion = POOL_MOTION_SLIDING;
+		pool_motion_after_impulse(&sim->def, &s[k]);
+	}
+}
+
 // Balls idx[0..m) of a cluster leave it at t and resume their closed-form states, with the
 // velocities of the last step (its motion up to t): airborne above the cloth, else the on-cloth
 // state of the velocities (pool_motion_after_impulse derives it); link_end records them.
@@ -291,11 +312,8 @@ static void release(pool_sim *sim, const int *idx, int m, double t) {
 	pool_ball_state *s = sim->link_states;
 	for (int k = 0; k < m; ++k)
 		step_end_state(sim, idx[k], t, &s[k]);
-	merge_common_motion(sim, s, m, sim->work);
+	leaving_states(sim, s, m);
 	for (int k = 0; k < m; ++k) {
-		settle(sim, &s[k]);
-		s[k].motion = POOL_MOTION_SLIDING;
-		pool_motion_after_impulse(&sim->def, &s[k]);
 		sim->body[idx[k]].cluster = -1;
 		sim->body[idx[k]].loose = 0;
 		pool_schedule_begin_segment(sim, idx[k], &s[k], t);
@@ -342,19 +360,12 @@ static pool_result pocket_strays(pool_sim *sim, int c, double t) {
 static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s, int m, double dt) {
 	pool_ball_state *free_state = sim->link_leaving;
 	for (int k = 0; k < m; ++k) {
-		const double *tail = sim->link_ws.ball_tail + 6 * k;
 		free_state[k] = s[k];
-		free_state[k].vel = pool_v3_add(s[k].vel, pool_v3(tail[0], tail[1], tail[2]));
-		free_state[k].omega = pool_v3_add(s[k].omega, pool_v3(tail[3], tail[4], tail[5]));
+		add_tail(&free_state[k], sim->link_ws.ball_tail + 6 * k);
 		// link_accel held the velocity at the step's start (pool_link_step_event)
 		sim->link_accel[k] = pool_v3_scale(pool_v3_sub(free_state[k].vel, sim->link_accel[k]), 1.0 / dt);
 	}
-	merge_common_motion(sim, free_state, m, sim->work); // as release() would
-	for (int k = 0; k < m; ++k) {
-		settle(sim, &free_state[k]);
-		free_state[k].motion = POOL_MOTION_SLIDING;
-		pool_motion_after_impulse(&sim->def, &free_state[k]);
-	}
+	leaving_states(sim, free_state, m); // as release() would make them
 	// A loose ball touching one that stays is held too when that one closes on it or presses
 	// it (the staying ball moving uniformly, as linked balls do): it would be hit at once.
 	const double reach = 2.0 * sim->def.params.ball_radius + POOL_LINK_TOUCH_GAP;
@@ -412,10 +423,10 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	int loose = 0;
 	for (int k = 0; k < m; ++k)
 		if (sim->body[idx[k]].loose) {
-			const int i = idx[k];
+			const int ball = idx[k];
 			for (int j = k; j > loose; --j)
 				idx[j] = idx[j - 1];
-			idx[loose++] = i;
+			idx[loose++] = ball;
 		}
 	if (loose > 0) {
 		release(sim, idx, loose, t);
@@ -471,9 +482,7 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	cl->t_next = still && leaving == 0 ? INFINITY : t + this_dt;
 	cl->dt = next_step_length(this_dt, st.max_contact_accel);
 	for (int k = 0; k < m; ++k) {
-		const double *tail = sim->link_ws.ball_tail + 6 * k;
-		for (int e = 0; e < 6; ++e)
-			sim->body[idx[k]].tail[e] = tail[e];
+		memcpy(sim->body[idx[k]].tail, sim->link_ws.ball_tail + 6 * k, sizeof sim->body[idx[k]].tail);
 		s[k].motion = POOL_MOTION_LINKED;
 		// The LCP's rounding (down to 1e-36 m/s) is no motion: a linked ball drifting at it
 		// would "collide" with every touching ball outside. Below POOL_REST_EPS, as in the
