@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "collision.h"
 #include "motion.h"
 #include "pool/pool.h"
@@ -40,26 +42,12 @@ typedef struct leak_report {
 	int noops; // ball_ball events that changed no velocity: recorded contacts without an impulse
 } leak_report;
 
-static pool_sim *make_sim(const pool_sim_def *def) {
-	pool_sim *sim = NULL;
-	pool_error err;
-	if (pool_sim_create(def, &sim, &err) != POOL_OK)
-		fail_msg("create: %s", err.message);
-	return sim;
-}
-
 static pool_ball_state ball_at(int32_t id, double x, double y, double R) {
 	pool_ball_state b;
 	memset(&b, 0, sizeof b);
 	b.id = id;
 	b.pos = pool_v3(x, y, R);
 	return b;
-}
-
-static void add(pool_sim *sim, const pool_ball_state *b) {
-	pool_error err;
-	if (pool_sim_add_ball(sim, b, &err) != POOL_OK)
-		fail_msg("add ball %d: %s", (int)b->id, err.message);
 }
 
 static void sample(const pool_sim *sim, const pool_sim_def *def, double t, leak_report *r) {
@@ -193,11 +181,11 @@ static void test_rail_slow_separation(void **state) {
 				default: b = ball_at(0, L - d, 0.6, R); phi = side > 0 ? 90.0 : 270.0; break;       // east
 				}
 				pool_sim *sim = make_sim(&def);
-				add(sim, &b);
+				add_ball(sim, &b);
 				for (double a = -0.02; a <= 0.021; a += 0.04) {
 					pool_strike s = {3.0, phi * M_PI / 180.0, 30.0 * M_PI / 180.0, a, 0.0};
 					assert_int_equal(pool_sim_reset(sim, NULL, NULL), POOL_OK);
-					add(sim, &b);
+					add_ball(sim, &b);
 					assert_int_equal(pool_sim_strike(sim, 0, &s, NULL), POOL_OK);
 					leak_report r = run_and_check(sim, &def);
 					assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_REST);
@@ -214,7 +202,7 @@ static void test_rail_slow_separation_reproducer(void **state) {
 	pool_sim_def def = pool_default_sim_def();
 	pool_sim *sim = make_sim(&def);
 	pool_ball_state b = ball_at(0, 1.0, 0.027513803808270492, def.params.ball_radius);
-	add(sim, &b);
+	add_ball(sim, &b);
 	pool_strike s = {3.0, M_PI, 30.0 * M_PI / 180.0, -0.02, 0.0};
 	assert_int_equal(pool_sim_strike(sim, 0, &s, NULL), POOL_OK);
 	leak_report r = run_and_check(sim, &def);
@@ -240,10 +228,10 @@ static void test_pair_slow_separation(void **state) {
 			pool_ball_state a = ball_at(1, 1.0, 0.6, R), b = ball_at(2, 1.0 + 2.0 * R + gaps[g], 0.6, R);
 			a.vel = pool_v3(speeds[v], 0.0, 0.0);
 			a.omega = pool_v3(0.0, 50.0, 0.0); // topspin: slip +x, friction drives ball 1 into ball 2
-			add(sim, &a);
-			add(sim, &b);
+			add_ball(sim, &a);
+			add_ball(sim, &b);
 			pool_ball_state c = ball_at(0, 0.3, 0.3, R);
-			add(sim, &c);
+			add_ball(sim, &c);
 			pool_strike s = {0.5, M_PI, 0.0, 0.0, 0.0};
 			assert_int_equal(pool_sim_strike(sim, 0, &s, NULL), POOL_OK);
 			leak_report r = run_and_check(sim, &def);
@@ -290,7 +278,7 @@ static void test_frictionless_slow_drift(void **state) {
 		pool_ball_state b = ball_at(0, 1.0, W - dc - 1e-8, R);
 		b.vel = pool_v3(0.0, speeds[k], 0.0);
 		b.omega = pool_v3(5.0, 0.0, 0.0); // backspin along the motion: sliding
-		add(sim, &b);
+		add_ball(sim, &b);
 		leak_report r = run_and_check(sim, &def);
 		assert_no_leak(&r, &def.params, "frictionless drift");
 		int n;
@@ -316,7 +304,7 @@ static void test_persistent_contact_linked(void **state) {
 	const double dc = pool_table_contact_distance(&def.table, R);
 	pool_sim *sim = make_sim(&def);
 	pool_ball_state b = ball_at(0, 1.0, dc, R);
-	add(sim, &b);
+	add_ball(sim, &b);
 	pool_strike s = {3.0, M_PI, 30.0 * M_PI / 180.0, -0.02, 0.0};
 	assert_int_equal(pool_sim_strike(sim, 0, &s, NULL), POOL_OK);
 	leak_report r = run_and_check(sim, &def);
@@ -325,8 +313,8 @@ static void test_persistent_contact_linked(void **state) {
 	assert_int_equal(pool_sim_reset(sim, NULL, NULL), POOL_OK);
 	pool_ball_state c = ball_at(1, 1.0, 0.6, R), d = ball_at(2, 1.0 + 2.0 * R, 0.6, R);
 	c.omega = pool_v3(0.0, 80.0, 0.0); // topspin into the frozen neighbour
-	add(sim, &c);
-	add(sim, &d);
+	add_ball(sim, &c);
+	add_ball(sim, &d);
 	r = run_and_check(sim, &def);
 	assert_no_leak(&r, &def.params, "persistent contact, topspin pushing a frozen ball");
 	assert_true(r.linked > 0);
@@ -348,9 +336,9 @@ static void test_graze_is_no_collision(void **state) {
 	pool_ball_state a = ball_at(0, 0.99436214933731815, 0.64128391836133469, R);
 	pool_ball_state b = ball_at(1, 0.94486879674954993, 0.61270891792168969, R);
 	pool_ball_state c = ball_at(2, 0.94486879674954993, 0.66985891792168972, R);
-	add(sim, &a);
-	add(sim, &b);
-	add(sim, &c);
+	add_ball(sim, &a);
+	add_ball(sim, &b);
+	add_ball(sim, &c);
 	const double deg = M_PI / 180.0; // as the scenario parser converts degrees
 	pool_strike s = {6.1275460259176864, 180.0 * deg, 49.5372810820257 * deg, 0.0, 0.022245165863904792};
 	assert_int_equal(pool_sim_strike(sim, 1, &s, NULL), POOL_OK);

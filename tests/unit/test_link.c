@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "pool/pool.h"
 #include "link_step.h"
 #include "motion.h"
@@ -45,26 +47,12 @@ typedef struct scene_report {
 	double end_time;
 } scene_report;
 
-static pool_sim *make_sim(const pool_sim_def *def) {
-	pool_sim *sim = NULL;
-	pool_error err;
-	if (pool_sim_create(def, &sim, &err) != POOL_OK)
-		fail_msg("create: %s", err.message);
-	return sim;
-}
-
 static pool_ball_state ball(int32_t id, double x, double y, double z) {
 	pool_ball_state b;
 	memset(&b, 0, sizeof b);
 	b.id = id;
 	b.pos = pool_v3(x, y, z);
 	return b;
-}
-
-static void add(pool_sim *sim, const pool_ball_state *b) {
-	pool_error err;
-	if (pool_sim_add_ball(sim, b, &err) != POOL_OK)
-		fail_msg("add ball %d: %s", (int)b->id, err.message);
 }
 
 static double total_energy(const pool_params *p, const pool_ball_state *s, int n) {
@@ -222,8 +210,8 @@ static void test_pushed_pair_closed_form(void **state) {
 	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
 	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
 	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
-	add(sim, &cue);
-	add(sim, &obj);
+	add_ball(sim, &cue);
+	add_ball(sim, &obj);
 	const double t1 = 2.0 * v / (5.0 * p->mu_slide * p->g);
 	assert_int_equal(pool_sim_run_until(sim, 0.9 * t1), POOL_OK);
 	pool_ball_state s[2];
@@ -270,9 +258,9 @@ static void test_touching_ball_left_out(void **state) {
 	const pool_ball_state side = ball(2, 0.6 - sqrt(2.0) * R, 0.635 + sqrt(2.0) * R, R);
 	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
 	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
-	add(sim, &cue);
-	add(sim, &obj);
-	add(sim, &side);
+	add_ball(sim, &cue);
+	add_ball(sim, &obj);
+	add_ball(sim, &side);
 	scene_report r = run_scene(sim, &def);
 	check_invariants("touching ball left out", &r, 0.0, 0.0);
 	assert_true(r.link_begin >= 1); // the pair is linked
@@ -302,7 +290,7 @@ static void test_pinned_to_rail_closed_form(void **state) {
 	pool_ball_state b = ball(0, 1.0, dc, R);
 	const double w0 = 40.0;
 	b.omega = pool_v3(w0, 0.0, 0.0);
-	add(sim, &b);
+	add_ball(sim, &b);
 	scene_report r = run_scene(sim, &def);
 	const double Nc = m * p->g * dc / (dc - mu * (h - R));
 	const double T = 0.4 * m * R * w0 / (mu * Nc);
@@ -336,9 +324,9 @@ static void test_ball_on_two(void **state) {
 	pool_sim *sim = make_sim(&def);
 	pool_ball_state a = ball(0, 1.0, 0.6, R), c = ball(1, 1.0 + 2.0 * R, 0.6, R);
 	pool_ball_state top = ball(2, 1.0 + R, 0.6, R + sqrt(3.0) * R + 1e-10);
-	add(sim, &a);
-	add(sim, &c);
-	add(sim, &top);
+	add_ball(sim, &a);
+	add_ball(sim, &c);
+	add_ball(sim, &top);
 	scene_report r = run_scene(sim, &def);
 	check_invariants("ball on two", &r, gravity_step_gain(&def.params, 3), 3 * gravity_step_gain(&def.params, 3));
 	assert_true(r.link_begin >= 1);
@@ -357,8 +345,8 @@ static void test_landing_on_a_ball(void **state) {
 	// Falls from 0.1 m above the resting ball onto its top, 5 mm off its axis, drifting at 0.05 m/s.
 	pool_ball_state jumper = ball(11, 1.495, 0.6, R + 2.0 * R + 0.1);
 	jumper.vel = pool_v3(0.05, 0.0, 0.0);
-	add(sim, &rest);
-	add(sim, &jumper);
+	add_ball(sim, &rest);
+	add_ball(sim, &jumper);
 	scene_report r = run_scene(sim, &def);
 	check_invariants("landing on a ball", &r, gravity_step_gain(&def.params, 2), 3 * gravity_step_gain(&def.params, 2));
 	pool_sim_destroy(sim);
@@ -370,9 +358,9 @@ static void test_follow_into_a_line(void **state) {
 	pool_sim_def def = pool_default_sim_def();
 	const double R = def.params.ball_radius;
 	pool_sim *sim = make_sim(&def);
-	add(sim, &(pool_ball_state){0, POOL_MOTION_STATIONARY, {0.5, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+	add_ball(sim, &(pool_ball_state){0, POOL_MOTION_STATIONARY, {0.5, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
 	for (int k = 0; k < 4; ++k)
-		add(sim, &(pool_ball_state){1 + k, POOL_MOTION_STATIONARY, {1.2 + 2.0 * R * k, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+		add_ball(sim, &(pool_ball_state){1 + k, POOL_MOTION_STATIONARY, {1.2 + 2.0 * R * k, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
 	pool_strike st = {1.0, 0.0, 0.0, 0.0, 0.5 * R};
 	pool_error err;
 	assert_int_equal(pool_sim_strike(sim, 0, &st, &err), POOL_OK);
@@ -389,9 +377,9 @@ static void test_low_restitution_line(void **state) {
 	def.params.e_ball = 0.2;
 	const double R = def.params.ball_radius;
 	pool_sim *sim = make_sim(&def);
-	add(sim, &(pool_ball_state){0, POOL_MOTION_STATIONARY, {0.5, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+	add_ball(sim, &(pool_ball_state){0, POOL_MOTION_STATIONARY, {0.5, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
 	for (int k = 0; k < 6; ++k)
-		add(sim, &(pool_ball_state){1 + k, POOL_MOTION_STATIONARY, {1.0 + 2.0 * R * k, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
+		add_ball(sim, &(pool_ball_state){1 + k, POOL_MOTION_STATIONARY, {1.0 + 2.0 * R * k, 0.635, R}, {0, 0, 0}, {0, 0, 0}});
 	pool_strike st = {3.0, 0.0, 0.0, 0.0, 0.0};
 	pool_error err;
 	assert_int_equal(pool_sim_strike(sim, 0, &st, &err), POOL_OK);
@@ -411,8 +399,8 @@ static void test_deterministic(void **state) {
 	pool_sim *sims[2];
 	for (int k = 0; k < 2; ++k) {
 		sims[k] = make_sim(&def);
-		add(sims[k], &(pool_ball_state){10, POOL_MOTION_STATIONARY, {1.5, 0.6, R}, {0, 0, 0}, {0, 0, 0}});
-		add(sims[k], &(pool_ball_state){11, POOL_MOTION_AIRBORNE, {1.495, 0.6, 3 * R + 0.1}, {0.05, 0, 0}, {0, 0, 0}});
+		add_ball(sims[k], &(pool_ball_state){10, POOL_MOTION_STATIONARY, {1.5, 0.6, R}, {0, 0, 0}, {0, 0, 0}});
+		add_ball(sims[k], &(pool_ball_state){11, POOL_MOTION_AIRBORNE, {1.495, 0.6, 3 * R + 0.1}, {0.05, 0, 0}, {0, 0, 0}});
 		assert_int_equal(pool_sim_run(sims[k]), POOL_OK);
 	}
 	int n0 = 0, n1 = 0;

@@ -21,11 +21,6 @@
 #include "motion.h"
 #include "pool/pool.h"
 #include "vec3.h"
-#if __has_include("contact_floor.h") // the separation floor, until LINK replaces it
-#include "contact_floor.h"
-#include "sim_internal.h"
-#define HAS_CONTACT_FLOOR 1
-#endif
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -551,13 +546,6 @@ static void test_random_shots_all_models(void **state) {
 			if (ev[e].type == POOL_EVENT_LINK_BEGIN || ev[e].type == POOL_EVENT_LINK_STEP ||
 			    ev[e].type == POOL_EVENT_LINK_END)
 				assert_true(gain <= LINK_ENERGY_TOLERANCE);
-#ifdef HAS_CONTACT_FLOOR
-			else if (pool_sim_event_flags(sim, e) & POOL_EVENT_FLAG_FLOOR) {
-				// Bounded by the separation floor: (m/4) (2 mu_slide g dt_min)^2 for two balls.
-				const double v = 2.0 * p->mu_slide * p->g * POOL_CONTACT_MIN_INTERVAL;
-				assert_true(gain <= 0.25 * p->ball_mass * v * v);
-			}
-#endif
 			else if (ev[e].type != POOL_EVENT_STRIKE)
 				worst_energy = fmax(worst_energy, gain);
 			if (ev[e].type == POOL_EVENT_BALL_BALL)

@@ -10,6 +10,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "collision.h"
 #include "motion.h"
 #include "pool/pool.h"
@@ -30,14 +32,6 @@ static pool_ball_state rest(int32_t id, double x, double y) {
 	b.id = id;
 	b.pos = pool_v3(x, y, pool_default_params().ball_radius);
 	return b;
-}
-
-static pool_sim *make_sim(const pool_sim_def *def) {
-	pool_sim *sim = NULL;
-	pool_error err;
-	if (pool_sim_create(def, &sim, &err) != POOL_OK)
-		fail_msg("create: %s", err.message);
-	return sim;
 }
 
 static const pool_event *find(pool_sim *sim, pool_event_type type, int nth) {

@@ -1,0 +1,22 @@
+// Test fixtures shared by the unit tests that drive a whole pool_sim: create one, add balls,
+// failing the cmocka test with the library's message on an error. Include after <cmocka.h>.
+#ifndef POOL_TEST_SIM_FIXTURE_H
+#define POOL_TEST_SIM_FIXTURE_H
+
+#include "pool/pool.h"
+
+static inline pool_sim *make_sim(const pool_sim_def *def) {
+	pool_sim *sim = NULL;
+	pool_error err;
+	if (pool_sim_create(def, &sim, &err) != POOL_OK)
+		fail_msg("create: %s", err.message);
+	return sim;
+}
+
+static inline void add_ball(pool_sim *sim, const pool_ball_state *b) {
+	pool_error err;
+	if (pool_sim_add_ball(sim, b, &err) != POOL_OK)
+		fail_msg("add ball %d: %s", (int)b->id, err.message);
+}
+
+#endif
