@@ -156,31 +156,33 @@ def _derive_motion(pos, vel, omega, r):
     return 0
 
 
+def layout_text(layout):
+    """The JSON text of a layout given as a path (str or os.PathLike), JSON text (a str or bytes
+    whose first non-blank character is "{") or a dict; TypeError for anything else."""
+    if isinstance(layout, dict):
+        return json.dumps(layout)
+    if isinstance(layout, (bytes, bytearray)):
+        return layout.decode("utf-8")
+    if isinstance(layout, str) and layout.lstrip().startswith("{"):
+        return layout
+    if isinstance(layout, (str, os.PathLike)):
+        with open(layout, encoding="utf-8") as f:
+            return f.read()
+    raise TypeError("layout: expected a path, JSON text or a dict, got "
+                    f"{type(layout).__name__}")
+
+
 def load_layout(layout):
     """A Layout from a path (str or os.PathLike), JSON text (a str whose first non-blank character
     is "{") or an already parsed dict, by the rules of pool-sim's scenario parser (the same
     fields, ranges and library checks). Raises ValueError naming the field."""
     if isinstance(layout, Layout):
         return layout
-    if isinstance(layout, dict):
-        doc = json.loads(json.dumps(layout), object_pairs_hook=_reject_duplicates,
-                         parse_constant=_reject_constant)
-    else:
-        if isinstance(layout, (bytes, bytearray)):
-            text = layout.decode("utf-8")
-        elif isinstance(layout, str) and layout.lstrip().startswith("{"):
-            text = layout
-        elif isinstance(layout, (str, os.PathLike)):
-            with open(layout, encoding="utf-8") as f:
-                text = f.read()
-        else:
-            raise TypeError("layout: expected a path, JSON text or a dict, got "
-                            f"{type(layout).__name__}")
-        try:
-            doc = json.loads(text, object_pairs_hook=_reject_duplicates,
-                             parse_constant=_reject_constant)
-        except json.JSONDecodeError as e:
-            _fail(f"(document): malformed JSON at line {e.lineno}, column {e.colno}: {e.msg}")
+    text = layout_text(layout)
+    try:
+        doc = json.loads(text, object_pairs_hook=_reject_duplicates, parse_constant=_reject_constant)
+    except json.JSONDecodeError as e:
+        _fail(f"(document): malformed JSON at line {e.lineno}, column {e.colno}: {e.msg}")
     return _parse_document(doc)
 
 

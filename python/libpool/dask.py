@@ -15,9 +15,6 @@ The workers need libpool installed (pip install ./python, or the same LIBPOOL_PA
 PYTHONPATH as the client); they need no file: the layout travels as its JSON text.
 """
 
-import json
-import os
-
 import numpy as np
 
 from . import batch as _batch
@@ -38,18 +35,7 @@ def _layout_text(layout):
     if isinstance(layout, _batch.Layout):
         raise TypeError("layout: pass the document (path, JSON text or dict), not a Layout: "
                         "the workers parse it themselves")
-    if isinstance(layout, dict):
-        text = json.dumps(layout)
-    elif isinstance(layout, (bytes, bytearray)):
-        text = layout.decode("utf-8")
-    elif isinstance(layout, str) and layout.lstrip().startswith("{"):
-        text = layout
-    elif isinstance(layout, (str, os.PathLike)):
-        with open(layout, encoding="utf-8") as f:
-            text = f.read()
-    else:
-        raise TypeError("layout: expected a path, JSON text or a dict, got "
-                        f"{type(layout).__name__}")
+    text = _batch.layout_text(layout)
     return text, _batch.load_layout(text)
 
 
