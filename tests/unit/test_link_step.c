@@ -414,6 +414,73 @@ static void test_rack_push(void **state) {
 	pool_link_workspace_free(&ws, &heap);
 }
 
+// A ball sliding slowly with backspin, its slip within what one step's cloth friction removes.
+// The rolling resistance must slow the rolling the step makes of it, (5 v - 2 R k x w) / 7,
+// not its sliding velocity: against that, the wrench raised the backspin's energy more than it
+// took from the motion. On the open cloth the step makes the ball roll: swept over speeds and
+// spins, it ends at the closed form's rolling speed, less at most a step's rolling resistance,
+// and neither half of the resistance adds energy. Pinned to a rail's nose (the soak's
+// rail_struck shot 3517), the cushion's friction keeps it sliding through the step, and the
+// velocities at the step's end (the mean plus the tail, the resistance's second half) had
+// 7e-9 J more energy than the mean.
+static void test_slow_draw_rolls(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	const pool_params *p = &def.params;
+	const double R = p->ball_radius, dt = 1e-3, reach = 3.5 * p->mu_slide * p->g * dt;
+	int checked = 0;
+	for (int iv = 1; iv <= 10; ++iv)
+		for (int iw = 1; iw <= 10; ++iw) {
+			const double v = -1e-3 * iv / 10.0; // moving -y
+			const double wR = 1e-3 * iw * 0.6;  // backspin: surface speed opposite the motion
+			pool_ball_state s = ball(pool_v3(1.0, 0.6, R), pool_v3(0.0, v, 0.0), pool_v3(-wR / R, 0.0, 0.0));
+			if (!(fabs(v - wR) <= reach))
+				continue;
+			const double rolling = (5.0 * v + 2.0 * wR) / 7.0; // (5 v - 2 R k x w) / 7, y component
+			pool_link_workspace ws = {0};
+			pool_link_step_stats st;
+			const double e0 = energy(p, &s, 1);
+			assert_int_equal(pool_link_step(&def, &s, 1, dt, &ws, &heap, &st), POOL_OK);
+			const double e_mean = energy(p, &s, 1);
+			pool_ball_state end = s;
+			const double *tail = ws.ball_tail;
+			end.vel = pool_v3_add(end.vel, pool_v3(tail[0], tail[1], tail[2]));
+			end.omega = pool_v3_add(end.omega, pool_v3(tail[3], tail[4], tail[5]));
+			const double e_end = energy(p, &end, 1);
+			if (!(e_mean <= e0 + ENERGY_TOL && e_end <= e_mean + ENERGY_TOL))
+				fail_msg("v %g, w R %g: energy %.17g, mean %.17g, end %.17g", v, wR, e0, e_mean, e_end);
+			if (!(fabs(end.vel.y - rolling) <= p->mu_roll * p->g * dt + STEP_ROUNDING))
+				fail_msg("v %g, w R %g: ends at %.17g, rolling speed %.17g", v, wR, end.vel.y, rolling);
+			const pool_vec3 end_slip = pool_v3_add(end.vel, pool_v3_scale(pool_v3_kcross(end.omega), R));
+			assert_true(pool_v3_len(end_slip) < STEP_ROUNDING);
+			pool_link_workspace_free(&ws, &heap);
+			++checked;
+		}
+	assert_true(checked > 50);
+	// The soak's case itself: the ball pinned to the east rail's nose by its backspin's cloth
+	// friction, which the cushion's friction keeps from rolling within the step.
+	def.table.cushion_height = 0.03629;
+	const double x = pool_rail_nose_line(&def.table, POOL_RAIL_EAST);
+	pool_ball_state b = ball(pool_v3(0.0, 0.6345784297134336, R), pool_v3(0.0, -0.002439514328323376, 0.0),
+	                         pool_v3(-0.2861123029128616, 0.0, 0.0));
+	const double up = def.table.cushion_height - R;
+	b.pos.x = x - sqrt(R * R - up * up); // touching the nose
+	pool_link_workspace ws = {0};
+	pool_link_step_stats st;
+	for (int k = 0; k < 3; ++k) {
+		const double e0 = energy(p, &b, 1);
+		assert_int_equal(pool_link_step(&def, &b, 1, dt, &ws, &heap, &st), POOL_OK);
+		const double e_mean = energy(p, &b, 1);
+		b.pos = pool_v3_madd(b.pos, dt, b.vel);
+		b.vel = pool_v3_add(b.vel, pool_v3(ws.ball_tail[0], ws.ball_tail[1], ws.ball_tail[2]));
+		b.omega = pool_v3_add(b.omega, pool_v3(ws.ball_tail[3], ws.ball_tail[4], ws.ball_tail[5]));
+		const double e_end = energy(p, &b, 1);
+		if (!(e_mean <= e0 + ENERGY_TOL && e_end <= e_mean + ENERGY_TOL))
+			fail_msg("pinned, step %d: energy %.17g, mean %.17g, end %.17g", k, e0, e_mean, e_end);
+	}
+	pool_link_workspace_free(&ws, &heap);
+}
+
 // ---- 5. errors
 
 static void test_out_of_memory(void **state) {
@@ -541,7 +608,7 @@ int main(void) {
 	    cmocka_unit_test(test_spinning),         cmocka_unit_test(test_resting_on_two),
 	    cmocka_unit_test(test_spin_into_rail),   cmocka_unit_test(test_follow_push),
 	    cmocka_unit_test(test_rack_push),        cmocka_unit_test(test_out_of_memory),    cmocka_unit_test(test_bad_input),
-	    cmocka_unit_test(test_contacts_and_stats),
+	    cmocka_unit_test(test_contacts_and_stats), cmocka_unit_test(test_slow_draw_rolls),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
