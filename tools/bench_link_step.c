@@ -78,6 +78,10 @@ static void make_scenes(scene *s) {
 			s[2].balls[k++] = ball(x0 + row * sqrt(3.0) * R, y0 + (j - 0.5 * row) * 2.0 * R, R, 0.0, 0.0);
 	s[2].n = k;
 	s[2].steps_per_run = 20;
+	// Distinct ids, as in a simulation: the steps keep their warm starts by ball id.
+	for (int i = 0; i < 3; ++i)
+		for (int b = 0; b < s[i].n; ++b)
+			s[i].balls[b].id = b;
 }
 
 // Runs `runs` blocks of steps on a copy of the scene (restarted each run); prints the summary.

@@ -74,6 +74,10 @@
 /// (its direction is then rounding noise): fixed directions instead.
 #define POOL_LINK_ALIGN_SLIP 1e-9
 
+/// The warm start's elimination treats a pivot below this fraction of its column's largest
+/// entry as zero (the basis is then singular and Lemke solves the step), Lemke's own rule.
+#define POOL_LINK_SINGULAR_REL 1e-14
+
 #define LINK_PI 3.14159265358979323846
 
 typedef enum link_kind { LINK_BALL = 0, LINK_CLOTH = 1, LINK_CUSHION = 2 } link_kind;
@@ -100,6 +104,7 @@ void pool_link_workspace_free(pool_link_workspace *ws, const pool_allocator *all
 		return;
 	if (ws->memory && alloc && alloc->free)
 		alloc->free(ws->memory, alloc->context);
+	pool_link_bases_free(&ws->bases, alloc);
 	memset(ws, 0, sizeof *ws);
 }
 
@@ -195,23 +200,11 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 	return count;
 }
 
-/// FNV-1a over the contact set: the warm start's basis is only valid for the same contacts in
-/// the same order with the same eta.
-static unsigned long long contact_key(const link_contact *c, int nc, int n, int eta) {
-	unsigned long long h = 1469598103934665603ull;
-	const unsigned long long prime = 1099511628211ull;
-#define LINK_MIX(v) (h = (h ^ (unsigned long long)(uint32_t)(v)) * prime)
-	LINK_MIX(n);
-	LINK_MIX(eta);
-	LINK_MIX(nc);
-	for (int i = 0; i < nc; ++i) {
-		LINK_MIX(c[i].kind);
-		LINK_MIX(c[i].a);
-		LINK_MIX(c[i].b);
-		LINK_MIX(c[i].rail);
-	}
-#undef LINK_MIX
-	return h;
+/// Who contact c is between (link_basis.h): its kind, the ball ids, the rail of a cushion.
+static pool_link_contact_id contact_id(const link_contact *c, const pool_ball_state *s) {
+	const pool_link_contact_id id = {(int32_t)c->kind, s[c->a].id,
+	                                 c->kind == LINK_BALL ? s[c->b].id : (int32_t)c->rail};
+	return id;
 }
 
 // ---- velocities of the contact points
@@ -232,10 +225,10 @@ static pool_vec3 contact_velocity(const link_contact *c, const double *V) {
 
 /// Unit vectors t1, t2 completing n to a right-handed basis: t1 along the tangential slip u_t
 /// when aligning and the slip is resolved, else fixed (k x n, or x on the cloth).
-static void tangent_basis(pool_vec3 n, pool_vec3 slip, int align, pool_vec3 *t1, pool_vec3 *t2) {
+static void tangent_basis(pool_vec3 n, pool_vec3 slip, int align, double align_slip, pool_vec3 *t1, pool_vec3 *t2) {
 	pool_vec3 ut = pool_v3_madd(slip, -pool_v3_dot(slip, n), n);
 	const double speed = pool_v3_len(ut);
-	if (align && speed > POOL_LINK_ALIGN_SLIP) {
+	if (align && speed > align_slip) {
 		*t1 = pool_v3_scale(ut, 1.0 / speed);
 	} else {
 		pool_vec3 k = pool_v3(0.0, 0.0, 1.0);
@@ -254,7 +247,8 @@ static void tangent_basis(pool_vec3 n, pool_vec3 slip, int align, pool_vec3 *t1,
 
 typedef struct link_memory {
 	int *basis;            // L
-	double *A;             // L x L
+	int *basic;            // L: the warm start's basic unknowns
+	double *A;             // L x L (the warm start's small system uses its first entries)
 	double *q, *z;         // L
 	double *V;             // 6 n: free velocities, then the step's
 	double *G;             // nc x 2 x (1 + eta) x 6: generalized directions, per side
@@ -270,8 +264,7 @@ typedef struct link_memory {
 
 static size_t align_up(size_t x) { return (x + 15u) & ~(size_t)15u; }
 
-/// Lays out the step's arrays in `base` (NULL: only sizes them); returns the bytes needed. The
-/// basis comes first, so it survives a regrow at the same place.
+/// Lays out the step's arrays in `base` (NULL: only sizes them); returns the bytes needed.
 static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
 	const size_t L = (size_t)nc * (size_t)(eta + 2);
 	const size_t dirs = (size_t)(1 + eta);
@@ -284,6 +277,7 @@ static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
 		at = align_up(at + sizeof(type) * (size_t)(count));                                                    \
 	} while (0)
 	LINK_PLACE(basis, int, L);
+	LINK_PLACE(basic, int, L);
 	LINK_PLACE(A, double, L * L);
 	LINK_PLACE(q, double, L);
 	LINK_PLACE(z, double, L);
@@ -303,8 +297,7 @@ static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
 	return at;
 }
 
-/// Makes the workspace hold `bytes`, keeping the warm-start basis; POOL_ERR_OUT_OF_MEMORY
-/// leaves it as it was.
+/// Makes the workspace hold `bytes`; POOL_ERR_OUT_OF_MEMORY leaves it as it was.
 static pool_result reserve(pool_link_workspace *ws, const pool_allocator *alloc, size_t bytes) {
 	if (ws->memory && ws->bytes >= bytes)
 		return POOL_OK;
@@ -314,14 +307,10 @@ static pool_result reserve(pool_link_workspace *ws, const pool_allocator *alloc,
 	void *memory = alloc->alloc(grown, alloc->context);
 	if (!memory)
 		return POOL_ERR_OUT_OF_MEMORY;
-	if (ws->memory) {
-		if (ws->basis && ws->n_basis > 0)
-			memcpy(memory, ws->basis, sizeof(int) * (size_t)ws->n_basis);
+	if (ws->memory)
 		alloc->free(ws->memory, alloc->context);
-	}
 	ws->memory = memory;
 	ws->bytes = grown;
-	ws->basis = memory;
 	return POOL_OK;
 }
 
@@ -432,6 +421,7 @@ typedef struct link_problem {
 	const link_contact *c;
 	int n, nc, eta, dirs, L;
 	double inv[6]; ///< M^-1 of a ball: 1/m three times, 1/I three times
+	double stick_slip; ///< m/s, cloth slip the step's cloth friction surely stops (build_directions)
 } link_problem;
 
 /// Contact i's side of ball a (side 0) or b (side 1): its dirs generalized directions, 6 each.
@@ -453,7 +443,8 @@ static void build_directions(link_problem *P, int align) {
 	for (int i = 0; i < P->nc; ++i) {
 		const link_contact *c = &P->c[i];
 		pool_vec3 t1, t2;
-		tangent_basis(c->n, contact_velocity(c, P->m.V), align, &t1, &t2);
+		const double align_slip = c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;
+		tangent_basis(c->n, contact_velocity(c, P->m.V), align, align_slip, &t1, &t2);
 		pool_vec3 d[POOL_LINK_ETA_MAX + 1];
 		d[0] = c->n;
 		for (int j = 0; j < eta / 2; ++j) {
@@ -609,6 +600,197 @@ static void apply_impulses(link_problem *P) {
 	}
 }
 
+// ---- warm start without the matrix
+
+/// Unknown r of the LCP: its contact, and its direction (0 the normal, 1 ... eta friction, -1
+/// the contact's lambda); the inverse of row_of and lambda_of.
+static void unknown_of(const link_problem *P, int r, int *contact, int *dir) {
+	const int friction = P->nc * P->eta, impulses = friction + P->nc;
+	if (r < friction) {
+		*contact = r / P->eta;
+		*dir = 1 + r % P->eta;
+	} else if (r < impulses) {
+		*contact = r - friction;
+		*dir = 0;
+	} else {
+		*contact = r - impulses;
+		*dir = -1;
+	}
+}
+
+/// Entry (r, c) of the LCP matrix as build_matrix and scale_to_velocity_units make it, computed
+/// on its own: J' M^-1 J (times the mass) over the balls the two contacts share, 1 (E), -1
+/// (-E') and mu inside a contact, 0 elsewhere.
+static double matrix_entry(const link_problem *P, int r, int c, double mass) {
+	int ir, jr, ic, jc;
+	unknown_of(P, r, &ir, &jr);
+	unknown_of(P, c, &ic, &jc);
+	if (jr < 0) // a lambda row: mu fn - E' beta of its own contact
+		return ir != ic || jc < 0 ? 0.0 : jc == 0 ? P->c[ir].mu : -1.0;
+	if (jc < 0) // the lambda column: E on its contact's friction rows
+		return ir == ic && jr > 0 ? 1.0 : 0.0;
+	const link_contact *cr = &P->c[ir], *cc = &P->c[ic];
+	double w = 0.0;
+	for (int sr = 0; sr < (cr->b >= 0 ? 2 : 1); ++sr)
+		for (int scol = 0; scol < (cc->b >= 0 ? 2 : 1); ++scol) {
+			if ((sr ? cr->b : cr->a) != (scol ? cc->b : cc->a))
+				continue;
+			const double *a = directions(P, ir, sr) + 6 * jr, *b = directions(P, ic, scol) + 6 * jc;
+			for (int e = 0; e < 6; ++e)
+				w += a[e] * P->inv[e] * b[e];
+		}
+	return w * mass;
+}
+
+/// Solves the k x k system S y = b in place (Gaussian elimination, partial pivoting; y in b).
+/// Returns -1 when S is numerically singular (a pivot below POOL_LINK_SINGULAR_REL of its
+/// column's largest entry).
+static int solve_dense(double *S, double *b, int k) {
+	for (int c = 0; c < k; ++c) {
+		int best = c;
+		double big = 0.0, colmax = 0.0;
+		for (int r = 0; r < k; ++r) {
+			const double e = fabs(S[r * k + c]);
+			colmax = fmax(colmax, e);
+			if (r >= c && e > big)
+				big = e, best = r;
+		}
+		if (!(big > POOL_LINK_SINGULAR_REL * colmax) || !isfinite(big))
+			return -1;
+		if (best != c) {
+			for (int e = 0; e < k; ++e) {
+				const double t = S[c * k + e];
+				S[c * k + e] = S[best * k + e];
+				S[best * k + e] = t;
+			}
+			const double t = b[c];
+			b[c] = b[best];
+			b[best] = t;
+		}
+		for (int r = c + 1; r < k; ++r) {
+			const double f = S[r * k + c] / S[c * k + c];
+			if (f == 0.0)
+				continue;
+			for (int e = c; e < k; ++e)
+				S[r * k + e] -= f * S[c * k + e];
+			b[r] -= f * b[c];
+		}
+	}
+	for (int r = k - 1; r >= 0; --r) {
+		double sum = b[r];
+		for (int e = r + 1; e < k; ++e)
+			sum -= S[r * k + e] * b[e];
+		b[r] = sum / S[r * k + r];
+	}
+	return 0;
+}
+
+/// Each contact's unknowns in the basis from the bases kept by contact.
+static void recall_bases(link_problem *P, const pool_ball_state *s, const pool_link_bases *bases) {
+	for (int j = 0; j < P->L; ++j)
+		P->m.basis[j] = 0;
+	for (int i = 0; i < P->nc; ++i) {
+		pool_link_contact_basis b;
+		if (!pool_link_bases_find(bases, contact_id(&P->c[i], s), &b))
+			continue;
+		P->m.basis[row_of(P, i, 0)] = b.normal;
+		P->m.basis[lambda_of(P, i)] = b.lambda;
+		for (int j = 1; j < P->dirs; ++j)
+			P->m.basis[row_of(P, i, j)] = (int)((b.friction >> (j - 1)) & 1u);
+	}
+}
+
+/// Keeps each contact's part of the solved basis for the next step. A table that cannot grow
+/// loses the bases it has no room for: the steps stay right, the next ones solve cold.
+static void store_bases(const link_problem *P, const pool_ball_state *s, pool_link_bases *bases,
+                        const pool_allocator *alloc) {
+	for (int i = 0; i < P->nc; ++i) {
+		pool_link_contact_basis b = {0, (uint8_t)(P->m.basis[row_of(P, i, 0)] != 0),
+		                             (uint8_t)(P->m.basis[lambda_of(P, i)] != 0)};
+		for (int j = 1; j < P->dirs; ++j)
+			if (P->m.basis[row_of(P, i, j)])
+				b.friction |= (uint64_t)1 << (j - 1);
+		if (pool_link_bases_store(bases, alloc, contact_id(&P->c[i], s), b))
+			return;
+	}
+}
+
+/// The previous step's basis, tried before any matrix is built: a cluster's contacts rarely
+/// change between steps, so its basic unknowns (per touching contact the normal, lambda and
+/// one or two friction directions: k of L, k ~ L / 6) usually still solve it. Their k x k
+/// system M_BB z_B = -q_B is formed from matrix_entry and the answer (rounding below zero
+/// clamped) is accepted when every row of w = M z + q passes the step's velocity residual at
+/// Lemke's bound, POOL_LEMKE_RESIDUAL_MAX relative to 1 + max |q| (stricter than Lemke's own
+/// test, relative to the size of the terms, and than the POOL_LINK_RESIDUAL_MAX a step accepts).
+/// w comes from the velocities the impulses make (M z is J' of them), so the whole check costs
+/// L + k^3 / 3 operations, where building the matrix for Lemke costs L^2: 2 us instead of 17
+/// for a pushing pair. Returns 1 with P->m.z set (velocity units) and *residual.
+static int solve_from_basis(link_problem *P, double mass, double *residual) {
+	const int L = P->L;
+	int *B = P->m.basic, k = 0;
+	for (int j = 0; j < L; ++j)
+		if (P->m.basis[j])
+			B[k++] = j;
+	// The system and its right-hand side in the matrix's memory (unused on this path).
+	if ((size_t)k * (size_t)(k + 1) > (size_t)L * (size_t)L)
+		return 0;
+	double *S = P->m.A, *y = P->m.A + (size_t)k * (size_t)k;
+	for (int p = 0; p < k; ++p) {
+		for (int t = 0; t < k; ++t)
+			S[p * k + t] = matrix_entry(P, B[p], B[t], mass);
+		y[p] = -P->m.q[B[p]];
+	}
+	if (solve_dense(S, y, k))
+		return 0;
+	double *z = P->m.z;
+	for (int j = 0; j < L; ++j)
+		z[j] = 0.0;
+	for (int p = 0; p < k; ++p)
+		z[B[p]] = y[p] > 0.0 ? y[p] : 0.0;
+	// The velocity change the impulses make (z in velocity units: impulse / mass), in the
+	// tail's memory (step_tail fills it after the solve).
+	double *dV = P->m.tail;
+	for (int e = 0; e < 6 * P->n; ++e)
+		dV[e] = 0.0;
+	for (int p = 0; p < k; ++p) {
+		int i, j;
+		unknown_of(P, B[p], &i, &j);
+		if (j < 0 || z[B[p]] == 0.0)
+			continue;
+		const link_contact *c = &P->c[i];
+		for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
+			const double *g = directions(P, i, side) + 6 * j;
+			double *d = dV + 6 * (side ? c->b : c->a);
+			for (int e = 0; e < 6; ++e)
+				d[e] += mass * z[B[p]] * P->inv[e] * g[e];
+		}
+	}
+	double worst = 0.0, qmax = 0.0;
+	for (int i = 0; i < P->nc; ++i) {
+		const link_contact *c = &P->c[i];
+		double friction = 0.0;
+		for (int j = 0; j < P->dirs; ++j) {
+			const size_t r = row_of(P, i, j);
+			double w = P->m.q[r];
+			for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
+				const double *g = directions(P, i, side) + 6 * j, *d = dV + 6 * (side ? c->b : c->a);
+				w += g[0] * d[0] + g[1] * d[1] + g[2] * d[2] + g[3] * d[3] + g[4] * d[4] + g[5] * d[5];
+			}
+			if (j > 0) {
+				w += z[lambda_of(P, i)];
+				friction += z[r];
+			}
+			worst = fmax(worst, fmax(-w, fmin(z[r], w)));
+			qmax = fmax(qmax, fabs(P->m.q[r]));
+		}
+		const size_t l = lambda_of(P, i);
+		const double w = c->mu * z[row_of(P, i, 0)] - friction;
+		worst = fmax(worst, fmax(-w, fmin(z[l], w)));
+	}
+	*residual = isfinite(worst) ? worst / (1.0 + qmax) : INFINITY;
+	return *residual <= POOL_LEMKE_RESIDUAL_MAX;
+}
+
 pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int n, double dt,
                                 const pool_link_options *options, pool_link_workspace *ws,
                                 const pool_allocator *alloc, pool_link_step_stats *stats) {
@@ -643,11 +825,11 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	P.eta = eta;
 	P.dirs = 1 + eta;
 	P.L = nc * (eta + 2);
+	P.stick_slip = 0.5 * 3.5 * def->params.mu_slide * def->params.g * dt;
 	pool_result r = reserve(ws, alloc, layout(NULL, n, nc, eta, NULL));
 	if (r)
 		return r;
 	layout(ws->memory, n, nc, eta, &P.m);
-	ws->basis = P.m.basis;
 	find_contacts(&sc, P.m.contacts);
 	P.c = P.m.contacts;
 
@@ -657,12 +839,9 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	build_incidence(&P);
 	build_vector(&P, dt);
 
-	// Warm start from the previous step's basis when the contact set is the same.
-	const unsigned long long key = contact_key(P.c, nc, n, eta);
-	if (!(ws->n_basis == P.L && ws->basis_key == key))
-		for (int i = 0; i < P.L; ++i)
-			P.m.basis[i] = 0;
-	ws->n_basis = 0; // invalid until this solve succeeds
+	// Warm start: each contact's basis from the last step that solved it (none: all w basic,
+	// right for a contact that stays open).
+	recall_bases(&P, s, &ws->bases);
 	// The friction LCP always has a solution, but its degeneracy (every unused friction
 	// direction of a sticking contact at w = 0) can defeat Lemke's tie-breaking in floating
 	// point: a false ray, or a residual above the limit. Each failure is retried from a cold
@@ -685,9 +864,15 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	                        {0.0, 0}};
 	const size_t attempts = options->align_friction ? 4 : 3;
 	pool_lemke_stats ls;
+	memset(&ls, 0, sizeof ls);
 	pool_lemke_status status = POOL_LEMKE_BAD_INPUT;
 	int pivots = 0;
-	for (size_t attempt = 0; attempt < attempts; ++attempt) {
+	if (solve_from_basis(&P, mass, &ls.residual)) {
+		status = POOL_LEMKE_SOLVED;
+		ls.warm = 1;
+	}
+	// Otherwise Lemke solves it (its own warm start tries the same basis, then from scratch).
+	for (size_t attempt = 0; attempt < attempts && status != POOL_LEMKE_SOLVED; ++attempt) {
 		if (attempt > 0 && ladder[attempt].align != ladder[attempt - 1].align) {
 			build_directions(&P, ladder[attempt].align);
 			build_vector(&P, dt);
@@ -730,8 +915,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	if (sc.planar)
 		for (int k = 0; k < n; ++k)
 			P.m.V[6 * k + 2] = 0.0;
-	ws->basis_key = key;
-	ws->n_basis = P.L;
+	store_bases(&P, s, &ws->bases, alloc);
 
 	// What presses each ball: the push its ball-ball and cushion contacts carried over the step,
 	// as a speed (dt fn / m), touching at the start or closed by the step.

@@ -13,6 +13,8 @@
 #include "pool/ball.h"
 #include "pool/sim.h"
 
+#include "link_basis.h"
+
 /// Friction directions per contact (PHYSICS.md: eta = 14, in +/- pairs).
 #define POOL_LINK_ETA 14
 
@@ -61,9 +63,7 @@ typedef struct pool_link_step_stats {
 typedef struct pool_link_workspace {
 	void *memory;
 	size_t bytes;
-	int *basis;   ///< warm start: the previous step's Lemke basis (valid while the contact set
-	int n_basis;  ///< is unchanged: basis_key identifies it)
-	unsigned long long basis_key;
+	pool_link_bases bases; ///< warm starts: each contact's basis in the last step that solved it
 	/// After a successful step, per ball of the step (n of them, valid until the next step):
 	double *ball_push; ///< m/s, its largest normal impulse / ball mass at a ball-ball or
 	                   ///< ball-cushion contact over the step (0: nothing presses it)

@@ -93,7 +93,7 @@ static void clear(pool_sim *sim) {
 	sim->noop_streak = 0;
 	sim->failed = POOL_OK;
 	memset(&sim->link_stats, 0, sizeof sim->link_stats);
-	sim->link_ws.n_basis = 0; // no warm start from another shot: the same input, the same bits
+	pool_link_bases_clear(&sim->link_ws.bases); // no warm start from another shot: the same input, the same bits
 }
 
 static void set_def(pool_sim *sim, const pool_sim_def *def) {

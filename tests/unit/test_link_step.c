@@ -481,6 +481,54 @@ static void test_slow_draw_rolls(void **state) {
 	pool_link_workspace_free(&ws, &heap);
 }
 
+// The warm starts are kept by contact, so two clusters stepped in turn with one workspace (as
+// the world steps its clusters) keep theirs: each step takes the same pivots and gives the
+// same bits as the cluster stepped alone with its own workspace (one basis for the whole
+// workspace made every step of either a cold solve), and nearly all are solved from the
+// previous step's basis.
+static void test_warm_start_by_contact(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	const double R = def.params.ball_radius;
+	// Two follow pushes far apart: a cue ball with topspin frozen to an object ball.
+	pool_ball_state a[2] = {ball(pool_v3(0.5, 0.3, R), pool_v3(0.8, 0, 0), pool_v3(0, 2.0 * 0.8 / R, 0)),
+	                        ball(pool_v3(0.5 + 2.0 * R, 0.3, R), pool_v3(0, 0, 0), pool_v3(0, 0, 0))};
+	pool_ball_state b[2] = {ball(pool_v3(1.5, 0.9, R), pool_v3(0, 0.6, 0), pool_v3(-2.0 * 0.6 / R, 0, 0)),
+	                        ball(pool_v3(1.5, 0.9 + 2.0 * R, R), pool_v3(0, 0, 0), pool_v3(0, 0, 0))};
+	for (int k = 0; k < 2; ++k) {
+		a[k].id = k;
+		b[k].id = 10 + k;
+	}
+	pool_ball_state a_alone[2], b_alone[2];
+	memcpy(a_alone, a, sizeof a);
+	memcpy(b_alone, b, sizeof b);
+	pool_link_options o = POOL_LINK_OPTIONS_DEFAULT;
+	pool_link_workspace shared = {0}, wa = {0}, wb = {0};
+	const double dt = 1e-3;
+	int warm = 0;
+	const int steps = 100;
+	for (int k = 0; k < steps; ++k) {
+		pool_link_step_stats sa, sb, sa1, sb1;
+		step(&def, a, 2, dt, &o, &shared, &sa);
+		step(&def, b, 2, dt, &o, &shared, &sb);
+		step(&def, a_alone, 2, dt, &o, &wa, &sa1);
+		step(&def, b_alone, 2, dt, &o, &wb, &sb1);
+		assert_memory_equal(a, a_alone, sizeof a);
+		assert_memory_equal(b, b_alone, sizeof b);
+		assert_int_equal(sa.pivots, sa1.pivots);
+		assert_int_equal(sb.pivots, sb1.pivots);
+		assert_int_equal(sa.warm, sa1.warm);
+		assert_int_equal(sb.warm, sb1.warm);
+		warm += sa.warm + sb.warm;
+	}
+	print_message("two pushes in turn: %d of %d steps warm\n", warm, 2 * steps);
+	assert_true(warm >= 2 * steps * 9 / 10);
+	assert_true(a[1].pos.x > 0.5 + 2.0 * R + 0.01 && b[1].pos.y > 0.9 + 2.0 * R + 0.01); // both pushed
+	pool_link_workspace_free(&shared, &heap);
+	pool_link_workspace_free(&wa, &heap);
+	pool_link_workspace_free(&wb, &heap);
+}
+
 // ---- 5. errors
 
 static void test_out_of_memory(void **state) {
@@ -499,9 +547,10 @@ static void test_out_of_memory(void **state) {
 	assert_int_equal(pool_link_step(&def, s, 3, 1e-3, &ws, &failing, &st), POOL_ERR_OUT_OF_MEMORY);
 	assert_memory_equal(s, copy, sizeof s);
 	assert_null(ws.memory);
-	// One allocation: a two-ball step works; the three-ball one needs more and fails cleanly,
-	// keeping the workspace, which still serves the two-ball step.
-	b.left = 1;
+	// Two allocations (the workspace, and the table of warm starts by contact): a two-ball
+	// step works; the three-ball one needs a larger workspace and fails cleanly, keeping the
+	// workspace, which still serves the two-ball step.
+	b.left = 2;
 	assert_int_equal(pool_link_step(&def, s, 2, 1e-3, &ws, &failing, &st), POOL_OK);
 	memcpy(copy, s, sizeof s);
 	void *kept = ws.memory;
@@ -609,6 +658,7 @@ int main(void) {
 	    cmocka_unit_test(test_spin_into_rail),   cmocka_unit_test(test_follow_push),
 	    cmocka_unit_test(test_rack_push),        cmocka_unit_test(test_out_of_memory),    cmocka_unit_test(test_bad_input),
 	    cmocka_unit_test(test_contacts_and_stats), cmocka_unit_test(test_slow_draw_rolls),
+	    cmocka_unit_test(test_warm_start_by_contact),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -18,6 +18,11 @@
 #define M_PI 3.14159265358979323846
 #endif
 
+/// m/s, a velocity the library cleans to zero as rest (motion.h's POOL_REST_EPS): a collision
+/// of a linked ball drifting at the LCP's rounding (1e-12 m/s) with a resting ball gives that
+/// ball a speed below it, which is then zero, and the pair's momentum changes by up to this.
+#define REST_CLEANUP 1e-12
+
 /// J: what a LINK step may add in planar mode, where its LCP only dissipates: Lemke's residual
 /// (POOL_LEMKE_RESIDUAL_MAX relative) on impulses of a few mN s.
 #define LINK_ENERGY_TOLERANCE 1e-9
@@ -180,8 +185,9 @@ static void check_shot(pool_sim *sim, const pool_sim_def *def, const shot *s, in
 			}
 		}
 		if (ev[e].type == POOL_EVENT_BALL_BALL) {
-			double dp = pool_v3_len(pool_v3_sub(p_after, p_before));
-			st->worst_momentum = fmax(st->worst_momentum, dp / (speeds + 1e-300));
+			// Less what the clean-up of rest speeds may take (REST_CLEANUP per ball).
+			double dp = pool_v3_len(pool_v3_sub(p_after, p_before)) - REST_CLEANUP * ev[e].ball_count;
+			st->worst_momentum = fmax(st->worst_momentum, fmax(dp, 0.0) / (speeds + 1e-300));
 		}
 		// Positions of every ball at each event time.
 		if (e + 1 == ne || ev[e + 1].time != ev[e].time) {
