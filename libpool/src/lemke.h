@@ -29,7 +29,8 @@ typedef enum pool_lemke_status {
 /// What a solve did.
 typedef struct pool_lemke_stats {
 	int pivots;      ///< complementary pivots taken (0 when the warm start was already a solution)
-	int warm;        ///< 1 when the warm-start basis solved the problem directly
+	int warm;        ///< 1 when the solve started from the warm-start basis (it solved the problem
+	                 ///< directly, pivots 0, or a few pivots from it did) rather than from scratch
 	double residual; ///< relative complementarity residual of the returned z
 } pool_lemke_stats;
 
@@ -41,8 +42,10 @@ size_t pool_lemke_workspace_bytes(int n);
 /// entry and the solution's complementary basis on exit: basis[i] = 1 when z_i is basic
 /// (may be > 0), 0 when w_i is; when the entry basis gives z >= 0, w >= 0 it is returned without
 /// pivoting (a LINK step's contacts rarely change between steps): the basis is solved directly
-/// and accepted when its z (rounding below zero clamped) passes the residual check, else Lemke
-/// runs from scratch. basis is written on POOL_LEMKE_SOLVED and POOL_LEMKE_RESIDUAL only. On any
+/// and accepted when its z (rounding below zero clamped) passes the residual check. A regular
+/// basis that does not is the start of Lemke's pivots (covering vector B 1, lemke.c), up to 2
+/// pivots per basic z; failing that, Lemke runs from scratch. Any answer passes the same
+/// residual check. basis is written on POOL_LEMKE_SOLVED and POOL_LEMKE_RESIDUAL only. On any
 /// other status z holds the last iterate (not a solution). max_pivots <= 0 means a default of
 /// 50 n + 100. workspace: pool_lemke_workspace_bytes(n) bytes aligned for double (as malloc
 /// gives); its contents on entry do not matter. stats may be NULL. n = 0 is solved (nothing to

@@ -871,7 +871,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 		status = POOL_LEMKE_SOLVED;
 		ls.warm = 1;
 	}
-	// Otherwise Lemke solves it (its own warm start tries the same basis, then from scratch).
+	// Otherwise Lemke pivots from that basis (lemke.h), or from scratch.
 	for (size_t attempt = 0; attempt < attempts && status != POOL_LEMKE_SOLVED; ++attempt) {
 		if (attempt > 0 && ladder[attempt].align != ladder[attempt - 1].align) {
 			build_directions(&P, ladder[attempt].align);

@@ -431,33 +431,75 @@ static void test_warm_start(void **state) {
 	}
 }
 
-// The next step's friction LCP: same contacts, velocities changed by 1e-6 relative. The warm
-// start is used when the old basis still solves it; either way the answer is a solution. (b
-// itself must not be perturbed freely: with more friction directions than ball degrees of
-// freedom, a b outside the range of J^T's image can make the LCP infeasible.)
+// The next step's friction LCP: same contacts, velocities changed by 1e-6 relative (the old
+// basis still solves it) and by 3e-2 (contacts change roles: the old basis is repaired by a few
+// pivots). Either way the answer is a solution, found from the old basis in all but a few, with
+// far fewer pivots than solving each step cold. (b itself must not be perturbed freely: with
+// more friction directions than ball degrees of freedom, a b outside the range of J^T's image
+// can make the LCP infeasible.)
 static void test_warm_start_changed(void **state) {
 	(void)state;
-	int used = 0, tried = 0;
-	for (int K = 2; K <= 30; K += 4)
-		for (uint64_t seed = 0; seed < 3; ++seed) {
-			tl_friction f = tl_friction_make(K, 300 + seed, 0);
-			double *z = malloc((size_t)f.n * sizeof *z);
-			int *basis = malloc((size_t)f.n * sizeof *basis);
-			tl_solve_ok(f.n, f.A, f.b, z, basis, "warm start, first step");
-			tl_friction next = tl_friction_make_changed(K, 300 + seed, 0, 1e-6);
-			memcpy(f.b, next.b, (size_t)f.n * sizeof *f.b);
-			tl_friction_free(&next);
-			pool_lemke_stats st = tl_solve_ok(f.n, f.A, f.b, z, basis, "warm start, next step");
-			used += st.warm;
-			++tried;
-			free(z);
-			free(basis);
-			tl_friction_free(&f);
-		}
-	print_message("changed velocities: warm start used in %d of %d\n", used, tried);
+	const double changes[2] = {1e-6, 3e-2};
+	for (int c = 0; c < 2; ++c) {
+		int used = 0, tried = 0, warm_pivots = 0, cold_pivots = 0;
+		for (int K = 2; K <= 30; K += 4)
+			for (uint64_t seed = 0; seed < 3; ++seed) {
+				tl_friction f = tl_friction_make(K, 300 + seed, 0);
+				double *z = malloc((size_t)f.n * sizeof *z);
+				int *basis = malloc((size_t)f.n * sizeof *basis);
+				tl_solve_ok(f.n, f.A, f.b, z, basis, "warm start, first step");
+				tl_friction next = tl_friction_make_changed(K, 300 + seed, 0, changes[c]);
+				memcpy(f.b, next.b, (size_t)f.n * sizeof *f.b);
+				tl_friction_free(&next);
+				pool_lemke_stats st = tl_solve_ok(f.n, f.A, f.b, z, basis, "warm start, next step");
+				pool_lemke_stats cold = tl_solve_ok(f.n, f.A, f.b, z, NULL, "cold start, next step");
+				used += st.warm;
+				warm_pivots += st.pivots;
+				cold_pivots += cold.pivots;
+				++tried;
+				free(z);
+				free(basis);
+				tl_friction_free(&f);
+			}
+		print_message("velocities changed by %g: warm start used in %d of %d, %d pivots (cold: %d)\n", changes[c], used,
+		              tried, warm_pivots, cold_pivots);
+		assert_true(used >= tried * 9 / 10);
+		assert_true(warm_pivots * 5 < cold_pivots);
+	}
 }
 
-// A basis that does not solve the problem (or is singular) is not used: the cold solve runs.
+// A positive definite M (unique solution) and a q changed by 30 %: the old basis no longer
+// solves it, and Lemke pivots from it (covering vector B 1, lemke.c warm_pivots). For a P-matrix
+// that always ends on the solution (a principal pivot transform of a P-matrix is one, and in
+// the basis's coordinates the covering vector is all ones), in fewer pivots than from scratch.
+static void test_warm_pivots(void **state) {
+	(void)state;
+	enum { N = 60 };
+	double *M = malloc(N * N * sizeof *M), *q = malloc(N * sizeof *q), z[N], zc[N];
+	int basis[N], repaired = 0, warm_pivots = 0, cold_pivots = 0;
+	for (int trial = 0; trial < 10; ++trial) {
+		tl_pd_problem(N, M, q);
+		tl_solve_ok(N, M, q, z, basis, "pd, first");
+		for (int i = 0; i < N; ++i)
+			q[i] += 0.3 * tl_uniform(-N, N);
+		pool_lemke_stats warm = tl_solve_ok(N, M, q, z, basis, "pd, from the old basis");
+		pool_lemke_stats cold = tl_solve_ok(N, M, q, zc, NULL, "pd, cold");
+		assert_int_equal(warm.warm, 1);
+		assert_true(tl_max_diff(N, zc, z) <= TL_SAME);
+		repaired += warm.pivots > 0;
+		warm_pivots += warm.pivots;
+		cold_pivots += cold.pivots;
+	}
+	print_message("q changed 30 %%: %d of 10 bases repaired by pivots, %d pivots (cold: %d)\n", repaired, warm_pivots,
+	              cold_pivots);
+	assert_true(repaired >= 8); // the change does spoil the basis
+	assert_true(warm_pivots < cold_pivots);
+	free(M);
+	free(q);
+}
+
+// A basis that does not solve the problem (or is singular) is not taken as the answer: pivots
+// from it or the cold solve find one that does.
 static void test_warm_start_wrong_basis(void **state) {
 	(void)state;
 	tl_friction f = tl_friction_make(8, 5, 0);
@@ -470,7 +512,7 @@ static void test_warm_start_wrong_basis(void **state) {
 	for (int i = 0; i < f.n; ++i)
 		basis[i] = i % 3 == 0;
 	st = tl_solve_ok(f.n, f.A, f.b, z, basis, "arbitrary warm start");
-	assert_int_equal(st.warm, 0);
+	assert_true(st.pivots > 0);
 	free(z);
 	free(basis);
 	tl_friction_free(&f);
@@ -579,6 +621,7 @@ int main(void) {
 	    cmocka_unit_test(test_small_against_brute_force),
 	    cmocka_unit_test(test_warm_start),
 	    cmocka_unit_test(test_warm_start_changed),
+	    cmocka_unit_test(test_warm_pivots),
 	    cmocka_unit_test(test_warm_start_wrong_basis),
 	    cmocka_unit_test(test_bad_input),
 	    cmocka_unit_test(test_not_copositive),
