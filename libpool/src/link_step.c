@@ -422,6 +422,7 @@ typedef struct link_problem {
 	int n, nc, eta, dirs, L;
 	double inv[6]; ///< M^-1 of a ball: 1/m three times, 1/I three times
 	double stick_slip; ///< m/s, cloth slip the step's cloth friction surely stops (build_directions)
+	int aligned;       ///< the friction directions lie along the slips (build_directions)
 } link_problem;
 
 /// Contact i's side of ball a (side 0) or b (side 1): its dirs generalized directions, 6 each.
@@ -436,15 +437,20 @@ static size_t row_of(const link_problem *P, int i, int j) {
 }
 static size_t lambda_of(const link_problem *P, int i) { return (size_t)(P->nc * (P->eta + 1) + i); }
 
+/// m/s, the tangential slip above which contact c's first friction direction lies along it.
+static double align_slip_of(const link_problem *P, const link_contact *c) {
+	return c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;
+}
+
 /// G = sigma [d; r x d] per contact side (sigma = -1 for ball b): direction 0 the normal, 1 ...
 /// eta the friction directions, d_{j + eta/2} = -d_j exactly.
 static void build_directions(link_problem *P, int align) {
 	const int eta = P->eta;
+	P->aligned = align;
 	for (int i = 0; i < P->nc; ++i) {
 		const link_contact *c = &P->c[i];
 		pool_vec3 t1, t2;
-		const double align_slip = c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;
-		tangent_basis(c->n, contact_velocity(c, P->m.V), align, align_slip, &t1, &t2);
+		tangent_basis(c->n, contact_velocity(c, P->m.V), align, align_slip_of(P, c), &t1, &t2);
 		pool_vec3 d[POOL_LINK_ETA_MAX + 1];
 		d[0] = c->n;
 		for (int j = 0; j < eta / 2; ++j) {
@@ -686,13 +692,34 @@ static int solve_dense(double *S, double *b, int k) {
 }
 
 /// Each contact's unknowns in the basis from the bases kept by contact.
+/// A touching contact no step has solved yet is guessed pressed (the cluster formed because
+/// its balls press), sliding against its slip when its first friction direction lies along one
+/// (its lambda and the opposite direction basic), else sticking with no friction: right for a
+/// ball on the cloth and for most pushes, so the first step of a cluster rarely needs Lemke.
+static void guess_basis(link_problem *P, int i) {
+	const link_contact *c = &P->c[i];
+	if (!(c->gap <= POOL_LINK_TOUCH_GAP))
+		return; // open: all w basic
+	P->m.basis[row_of(P, i, 0)] = 1;
+	if (!P->aligned)
+		return;
+	const pool_vec3 u = contact_velocity(c, P->m.V);
+	const pool_vec3 ut = pool_v3_madd(u, -pool_v3_dot(u, c->n), c->n);
+	if (pool_v3_len(ut) > align_slip_of(P, c)) {
+		P->m.basis[lambda_of(P, i)] = 1;
+		P->m.basis[row_of(P, i, 1 + P->eta / 2)] = 1;
+	}
+}
+
 static void recall_bases(link_problem *P, const pool_ball_state *s, const pool_link_bases *bases) {
 	for (int j = 0; j < P->L; ++j)
 		P->m.basis[j] = 0;
 	for (int i = 0; i < P->nc; ++i) {
 		pool_link_contact_basis b;
-		if (!pool_link_bases_find(bases, contact_id(&P->c[i], s), &b))
+		if (!pool_link_bases_find(bases, contact_id(&P->c[i], s), &b)) {
+			guess_basis(P, i);
 			continue;
+		}
 		P->m.basis[row_of(P, i, 0)] = b.normal;
 		P->m.basis[lambda_of(P, i)] = b.lambda;
 		for (int j = 1; j < P->dirs; ++j)
