@@ -103,13 +103,12 @@
 
 typedef struct lemke {
 	int n, k;         // k: basic columns of A = rows with a nonbasic w
-	const double *M;  // n x n row-major
 	const double *q;
 	double *G;        // A_RC^-1, k x k, leading dimension n: G[slot_c * n + slot_r]
 	double *ARC;      // A_RC itself, k x k, leading dimension n: ARC[slot_r * n + slot_c]
-	int *mstart;      // M by columns: column j is mval/mrow[mstart[j] .. mstart[j + 1])
-	int *mrow;
-	double *mval;
+	const int *mstart; // M by columns: column j is mval/mrow[mstart[j] .. mstart[j + 1]), rows
+	const int *mrow;   // ascending (the caller's arrays, or the workspace's copy of a dense M)
+	const double *mval;
 	int *R;           // R[slot_r] = row whose w is nonbasic
 	int *C;           // C[slot_c] = column of A (j < n: z_j, n: z0)
 	int *rowslot;     // row i -> slot_r, or -1 when w_i is basic
@@ -122,6 +121,8 @@ typedef struct lemke {
 	int *cand;        // tied rows (scratch)
 	int *perm;        // Gauss-Jordan's row interchanges (scratch)
 	double *cover;    // the covering vector d: z0's column of A is -d (e, or B 1 from a warm basis)
+	int *mstart_store, *mrow_store; // the workspace's compressed columns of a dense M
+	double *mval_store;
 	int rebuilds;     // times G was rebuilt because it had drifted
 	double amax;      // max(1, max |M_ij|): the largest entry of A
 	double dmax;      // max |d| of the last ratio test
@@ -145,7 +146,7 @@ static void carve(lemke *L, void *workspace) {
 	double *d = workspace;
 	L->G = d, d += n * n;
 	L->ARC = d, d += n * n;
-	L->mval = d, d += n * n;
+	L->mval_store = d, d += n * n;
 	L->x = d, d += 2 * n;
 	L->d = d, d += 2 * n;
 	L->v = d, d += n;
@@ -153,8 +154,8 @@ static void carve(lemke *L, void *workspace) {
 	L->cover = d, d += n;
 	L->lexval = d;
 	int *i = (int *)((char *)workspace + round16(doubles_for(n) * sizeof(double)));
-	L->mrow = i, i += n * n;
-	L->mstart = i, i += n + 1;
+	L->mrow_store = i, i += n * n;
+	L->mstart_store = i, i += n + 1;
 	L->R = i, i += n;
 	L->C = i, i += n;
 	L->rowslot = i, i += n;
@@ -163,16 +164,17 @@ static void carve(lemke *L, void *workspace) {
 	L->perm = i;
 }
 
-// Checks M and q are finite and stores M by columns. Returns -1 on a non-finite entry.
-static int load(lemke *L) {
+// Checks a dense M and q are finite and stores M by columns in the workspace. Returns -1 on a
+// non-finite entry.
+static int load_dense(lemke *L, const double *M) {
 	int n = L->n;
-	int *count = L->mstart + 1;
+	int *start = L->mstart_store, *count = start + 1;
 	double amax = 1.0;
-	memset(L->mstart, 0, (size_t)(n + 1) * sizeof *L->mstart);
+	memset(start, 0, (size_t)(n + 1) * sizeof *start);
 	for (int i = 0; i < n; ++i) {
 		if (!isfinite(L->q[i]))
 			return -1;
-		const double *row = L->M + (size_t)i * (size_t)n;
+		const double *row = M + (size_t)i * (size_t)n;
 		for (int j = 0; j < n; ++j) {
 			if (!isfinite(row[j]))
 				return -1;
@@ -181,19 +183,48 @@ static int load(lemke *L) {
 		}
 	}
 	L->amax = amax;
-	for (int j = 0; j < n; ++j) // mstart[j + 1] = end of column j; fill from the starts
-		L->mstart[j + 1] += L->mstart[j];
+	for (int j = 0; j < n; ++j) // start[j + 1] = end of column j; fill from the starts
+		start[j + 1] += start[j];
 	int *next = L->cand;
-	memcpy(next, L->mstart, (size_t)n * sizeof *next);
+	memcpy(next, start, (size_t)n * sizeof *next);
 	for (int i = 0; i < n; ++i) {
-		const double *row = L->M + (size_t)i * (size_t)n;
+		const double *row = M + (size_t)i * (size_t)n;
 		for (int j = 0; j < n; ++j)
 			if (row[j] != 0.0) {
 				int t = next[j]++;
-				L->mrow[t] = i;
-				L->mval[t] = row[j];
+				L->mrow_store[t] = i;
+				L->mval_store[t] = row[j];
 			}
 	}
+	L->mstart = start;
+	L->mrow = L->mrow_store;
+	L->mval = L->mval_store;
+	return 0;
+}
+
+// Checks compressed columns (starts from 0 and never decreasing, rows inside [0, n) and strictly
+// ascending in each column, finite values) and q. Returns -1 on anything else.
+static int load_columns(lemke *L, const int *start, const int *row, const double *val) {
+	int n = L->n;
+	double amax = 1.0;
+	if (start[0] != 0)
+		return -1;
+	for (int i = 0; i < n; ++i)
+		if (!isfinite(L->q[i]))
+			return -1;
+	for (int j = 0; j < n; ++j) {
+		if (start[j + 1] < start[j] || start[j + 1] - start[j] > n)
+			return -1;
+		for (int t = start[j]; t < start[j + 1]; ++t) {
+			if (row[t] < 0 || row[t] >= n || (t > start[j] && row[t] <= row[t - 1]) || !isfinite(val[t]))
+				return -1;
+			amax = fabs(val[t]) > amax ? fabs(val[t]) : amax;
+		}
+	}
+	L->amax = amax;
+	L->mstart = start;
+	L->mrow = row;
+	L->mval = val;
 	return 0;
 }
 
@@ -214,8 +245,21 @@ static inline double dot(const double *a, const double *b, int k) {
 
 // --- columns of A = [-M | -d] ---
 
+// M_ic: a binary search of column c's rows (a column of M has at most a few hundred).
+static inline double entry_of_M(const lemke *L, int i, int c) {
+	int lo = L->mstart[c], hi = L->mstart[c + 1];
+	while (lo < hi) {
+		const int mid = lo + (hi - lo) / 2;
+		if (L->mrow[mid] < i)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < L->mstart[c + 1] && L->mrow[lo] == i ? L->mval[lo] : 0.0;
+}
+
 static inline double entry_of_A(const lemke *L, int i, int c) {
-	return c == L->n ? -L->cover[i] : -L->M[(size_t)i * (size_t)L->n + (size_t)c];
+	return c == L->n ? -L->cover[i] : -entry_of_M(L, i, c);
 }
 
 // y[0..n) += f * A[:, c]
@@ -669,30 +713,36 @@ static int ratio_test(lemke *L, int *leave) {
 
 // --- answers ---
 
-// z from the basic columns (rounding below zero clamped to 0), and its residual from M and q.
+// z from the basic columns (rounding below zero clamped to 0), and its residual from M and q:
+// w = q + M z and the size of its terms, accumulated column by column over the nonzero z (each
+// row's terms in ascending column order) into the direction's memory (free: the next pivot
+// recomputes it).
 static double extract(lemke *L, double *z) {
 	int n = L->n;
 	memset(z, 0, (size_t)n * sizeof *z);
 	for (int s = 0; s < L->k; ++s)
 		if (L->C[s] < n)
 			z[L->C[s]] = positive(L->x[n + s]);
-	int nz = 0, *nzi = L->cand;
-	for (int j = 0; j < n; ++j)
-		if (z[j] != 0.0)
-			nzi[nz++] = j;
+	double *w = L->d, *terms = L->d + n;
+	for (int i = 0; i < n; ++i) {
+		w[i] = L->q[i];
+		terms[i] = fabs(L->q[i]);
+	}
+	for (int j = 0; j < n; ++j) {
+		if (z[j] == 0.0)
+			continue;
+		for (int t = L->mstart[j]; t < L->mstart[j + 1]; ++t) {
+			const double e = L->mval[t] * z[j];
+			w[L->mrow[t]] += e;
+			terms[L->mrow[t]] += fabs(e);
+		}
+	}
 	double size = 0.0, res = 0.0;
 	for (int i = 0; i < n; ++i) {
-		const double *row = L->M + (size_t)i * (size_t)n;
-		double w = L->q[i], terms = fabs(L->q[i]);
-		for (int t = 0; t < nz; ++t) {
-			double e = row[nzi[t]] * z[nzi[t]];
-			w += e;
-			terms += fabs(e);
-		}
-		double r = -w > fmin(z[i], w) ? -w : fmin(z[i], w);
+		double r = -w[i] > fmin(z[i], w[i]) ? -w[i] : fmin(z[i], w[i]);
 		if (!(r <= res)) // NaN too
 			res = r == r ? r : INFINITY;
-		size = terms > size ? terms : size;
+		size = terms[i] > size ? terms[i] : size;
 	}
 	return res / (1.0 + size);
 }
@@ -709,7 +759,8 @@ static void start_all_w(lemke *L) {
 		L->rowslot[i] = -1;
 	for (int c = 0; c <= L->n; ++c)
 		L->colslot[c] = -1;
-	memcpy(L->x, L->q, (size_t)L->n * sizeof *L->x);
+	if (L->n > 0)
+		memcpy(L->x, L->q, (size_t)L->n * sizeof *L->x);
 }
 
 // Warm start: the complementary basis with z_j basic where basis[j] != 0. Returns 1 when it
@@ -850,43 +901,80 @@ static pool_lemke_status warm_pivots(lemke *L, int max_pivots, double *z, int *b
 	return complementary_pivots(L, enter, max_pivots, z, basis, st);
 }
 
-pool_lemke_status pool_lemke_solve(int n, const double *M, const double *q, double *z, int *basis, int max_pivots,
-                                   void *workspace, pool_lemke_stats *stats) {
-	pool_lemke_stats local;
-	pool_lemke_stats *st = stats ? stats : &local;
+// The solve once M is loaded (lemke.h).
+static pool_lemke_status solve_loaded(lemke *L, double *z, int *basis, int max_pivots, pool_lemke_stats *st) {
+	const int n = L->n;
+	if (max_pivots <= 0)
+		max_pivots = 50 * n + 100;
+	if (basis) {
+		int loaded;
+		if (warm_start(L, basis, z, &st->residual, &loaded)) {
+			st->warm = 1;
+			write_basis(L, basis);
+			return POOL_LEMKE_SOLVED;
+		}
+		if (loaded && L->k > 0) { // (from no basic z, the warm pivots are the cold start's)
+			const double amax = L->amax;
+			const int budget = LEMKE_WARM_PIVOTS_PER_BASIC * (L->k + 1);
+			const pool_lemke_status ws = warm_pivots(L, budget < max_pivots ? budget : max_pivots, z, basis, st);
+			if (ws == POOL_LEMKE_SOLVED) {
+				st->warm = 1;
+				return ws;
+			}
+			L->amax = amax; // the cold start as if alone, with the pivot budget it would have
+			max_pivots += st->pivots;
+		}
+	}
+	return cold_start(L, max_pivots, z, basis, st);
+}
+
+// What both entry points check first; 1 when the solve is over (n = 0 or bad input, *status).
+static int begin(int n, const double *q, const double *z, const void *workspace, pool_lemke_stats *st,
+                 pool_lemke_status *status) {
 	st->pivots = 0;
 	st->warm = 0;
 	st->residual = INFINITY;
 	if (n == 0) {
 		st->residual = 0.0;
-		return POOL_LEMKE_SOLVED;
+		*status = POOL_LEMKE_SOLVED;
+		return 1;
 	}
-	if (n < 0 || n > LEMKE_N_MAX || !M || !q || !z || !workspace || (uintptr_t)workspace % _Alignof(double) != 0)
+	if (n < 0 || n > LEMKE_N_MAX || !q || !z || !workspace || (uintptr_t)workspace % _Alignof(double) != 0) {
+		*status = POOL_LEMKE_BAD_INPUT;
+		return 1;
+	}
+	return 0;
+}
+
+pool_lemke_status pool_lemke_solve(int n, const double *M, const double *q, double *z, int *basis, int max_pivots,
+                                   void *workspace, pool_lemke_stats *stats) {
+	pool_lemke_stats local;
+	pool_lemke_stats *st = stats ? stats : &local;
+	pool_lemke_status status;
+	if (begin(n, q, z, workspace, st, &status))
+		return status;
+	if (!M)
 		return POOL_LEMKE_BAD_INPUT;
-	lemke L = {.n = n, .M = M, .q = q};
+	lemke L = {.n = n, .q = q};
 	carve(&L, workspace);
-	if (load(&L))
+	if (load_dense(&L, M))
 		return POOL_LEMKE_BAD_INPUT;
-	if (max_pivots <= 0)
-		max_pivots = 50 * n + 100;
-	if (basis) {
-		int loaded;
-		if (warm_start(&L, basis, z, &st->residual, &loaded)) {
-			st->warm = 1;
-			write_basis(&L, basis);
-			return POOL_LEMKE_SOLVED;
-		}
-		if (loaded && L.k > 0) { // (from no basic z, the warm pivots are the cold start's)
-			const double amax = L.amax;
-			const int budget = LEMKE_WARM_PIVOTS_PER_BASIC * (L.k + 1);
-			const pool_lemke_status ws = warm_pivots(&L, budget < max_pivots ? budget : max_pivots, z, basis, st);
-			if (ws == POOL_LEMKE_SOLVED) {
-				st->warm = 1;
-				return ws;
-			}
-			L.amax = amax; // the cold start as if alone, with the pivot budget it would have
-			max_pivots += st->pivots;
-		}
-	}
-	return cold_start(&L, max_pivots, z, basis, st);
+	return solve_loaded(&L, z, basis, max_pivots, st);
+}
+
+pool_lemke_status pool_lemke_solve_columns(int n, const int *start, const int *row, const double *val, const double *q,
+                                           double *z, int *basis, int max_pivots, void *workspace,
+                                           pool_lemke_stats *stats) {
+	pool_lemke_stats local;
+	pool_lemke_stats *st = stats ? stats : &local;
+	pool_lemke_status status;
+	if (begin(n, q, z, workspace, st, &status))
+		return status;
+	if (!start || (start[n] > 0 && (!row || !val)))
+		return POOL_LEMKE_BAD_INPUT;
+	lemke L = {.n = n, .q = q};
+	carve(&L, workspace);
+	if (load_columns(&L, start, row, val))
+		return POOL_LEMKE_BAD_INPUT;
+	return solve_loaded(&L, z, basis, max_pivots, st);
 }

@@ -53,4 +53,14 @@ size_t pool_lemke_workspace_bytes(int n);
 pool_lemke_status pool_lemke_solve(int n, const double *M, const double *q, double *z, int *basis, int max_pivots,
                                    void *workspace, pool_lemke_stats *stats);
 
+/// pool_lemke_solve with M in compressed columns: column j's nonzeros are val[t] in rows
+/// row[t] for t in [start[j], start[j + 1]), rows strictly ascending, start[0] = 0 (n + 1
+/// starts). The same answer, bit for bit, as the dense M with those entries; the solver reads
+/// the arrays in place, so a sparse M (a LINK step's: each contact couples only with the
+/// contacts of its two balls) is never formed densely. POOL_LEMKE_BAD_INPUT for malformed
+/// columns (a row out of range or not ascending, a non-finite value) as for a NULL array.
+pool_lemke_status pool_lemke_solve_columns(int n, const int *start, const int *row, const double *val, const double *q,
+                                           double *z, int *basis, int max_pivots, void *workspace,
+                                           pool_lemke_stats *stats);
+
 #endif

@@ -65,10 +65,20 @@
 /// let two balls interpenetrate.
 #define POOL_LINK_MARGIN POOL_LINK_TOUCH_GAP
 
-/// Contacts above which a step refuses (POOL_ERR_OUT_OF_MEMORY) rather than size a dense LCP of
-/// (contacts (eta + 2))^2 doubles: 2000 contacts are 2 GB at eta = 14, far beyond any cluster
-/// of a rack's balls (a frozen 16-ball cluster has 47), and the product stays inside size_t.
+/// Contacts above which a step refuses (POOL_ERR_OUT_OF_MEMORY) rather than size Lemke's
+/// workspace, which grows as (contacts (eta + 2))^2: 2000 contacts are 28 GB at eta = 14, far
+/// beyond any cluster of a rack's balls (a frozen 16-ball cluster has 47), and the product
+/// stays inside size_t.
 #define POOL_LINK_CONTACTS_MAX 2000
+
+/// Contacts sharing a ball with a contact (itself included) that the first layout of a step's
+/// matrix makes room for: a ball on the cloth touching two others has 3 contacts, so a contact
+/// between two such balls shares a ball with 5; a larger cluster is laid out again.
+#define POOL_LINK_NEAR_GUESS 5
+
+/// Basic unknowns above which the warm start goes straight to Lemke rather than solve their
+/// system densely itself (k^3 / 3): a rack's cluster keeps about 150 basic.
+#define POOL_LINK_WARM_BASIC_MAX 256
 
 /// m/s, tangential slip below which a contact's friction directions are not aligned with it
 /// (its direction is then rounding noise): fixed directions instead.
@@ -248,7 +258,11 @@ static void tangent_basis(pool_vec3 n, pool_vec3 slip, int align, double align_s
 typedef struct link_memory {
 	int *basis;            // L
 	int *basic;            // L: the warm start's basic unknowns
-	double *A;             // L x L (the warm start's small system uses its first entries)
+	double *S;             // the warm start's k x k system and right-hand side, k <= POOL_LINK_WARM_BASIC_MAX
+	int *col_start;        // L + 1: the LCP matrix by columns (lemke.h), nonzeros only
+	int *col_row;          // nnz_max
+	double *col_val;       // nnz_max
+	int *near;             // nc: scratch, the contacts sharing a ball with one contact
 	double *q, *z;         // L
 	double *V;             // 6 n: free velocities, then the step's
 	double *G;             // nc x 2 x (1 + eta) x 6: generalized directions, per side
@@ -265,8 +279,10 @@ typedef struct link_memory {
 static size_t align_up(size_t x) { return (x + 15u) & ~(size_t)15u; }
 
 /// Lays out the step's arrays in `base` (NULL: only sizes them); returns the bytes needed.
-static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
+/// nnz_max bounds the LCP matrix's nonzeros (matrix_capacity).
+static size_t layout(void *base, int n, int nc, int eta, size_t nnz_max, link_memory *m) {
 	const size_t L = (size_t)nc * (size_t)(eta + 2);
+	const size_t warm = L < POOL_LINK_WARM_BASIC_MAX ? L : POOL_LINK_WARM_BASIC_MAX;
 	const size_t dirs = (size_t)(1 + eta);
 	size_t at = 0;
 	char *b = base;
@@ -278,7 +294,11 @@ static size_t layout(void *base, int n, int nc, int eta, link_memory *m) {
 	} while (0)
 	LINK_PLACE(basis, int, L);
 	LINK_PLACE(basic, int, L);
-	LINK_PLACE(A, double, L * L);
+	LINK_PLACE(S, double, warm * (warm + 1));
+	LINK_PLACE(col_start, int, L + 1);
+	LINK_PLACE(col_row, int, nnz_max);
+	LINK_PLACE(col_val, double, nnz_max);
+	LINK_PLACE(near, int, nc);
 	LINK_PLACE(q, double, L);
 	LINK_PLACE(z, double, L);
 	LINK_PLACE(V, double, 6 * (size_t)n);
@@ -437,6 +457,22 @@ static size_t row_of(const link_problem *P, int i, int j) {
 }
 static size_t lambda_of(const link_problem *P, int i) { return (size_t)(P->nc * (P->eta + 1) + i); }
 
+/// Unknown r of the LCP: its contact, and its direction (0 the normal, 1 ... eta friction, -1
+/// the contact's lambda); the inverse of row_of and lambda_of.
+static void unknown_of(const link_problem *P, int r, int *contact, int *dir) {
+	const int friction = P->nc * P->eta, impulses = friction + P->nc;
+	if (r < friction) {
+		*contact = r / P->eta;
+		*dir = 1 + r % P->eta;
+	} else if (r < impulses) {
+		*contact = r - friction;
+		*dir = 0;
+	} else {
+		*contact = r - impulses;
+		*dir = -1;
+	}
+}
+
 /// m/s, the tangential slip above which contact c's first friction direction lies along it.
 static double align_slip_of(const link_problem *P, const link_contact *c) {
 	return c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;
@@ -499,42 +535,107 @@ static void build_incidence(link_problem *P) {
 	start[0] = 0;
 }
 
-/// The LCP matrix: J' M^-1 J one block per pair of contacts sharing a ball (M^-1 is per ball,
-/// so the blocks of contacts with no ball in common are zero), then E, -E' and mu.
-static void build_matrix(link_problem *P) {
-	const size_t L = (size_t)P->L;
-	double *A = P->m.A;
-	memset(A, 0, sizeof(double) * L * L);
-	for (int k = 0; k < P->n; ++k)
-		for (int e1 = P->m.inc_start[k]; e1 < P->m.inc_start[k + 1]; ++e1)
-			for (int e2 = e1; e2 < P->m.inc_start[k + 1]; ++e2) {
-				const link_incidence i1 = P->m.inc[e1], i2 = P->m.inc[e2];
-				const double *g1 = directions(P, i1.contact, i1.side), *g2 = directions(P, i2.contact, i2.side);
-				for (int j1 = 0; j1 < P->dirs; ++j1) {
-					const double *a = g1 + 6 * j1;
-					const double h[6] = {a[0] * P->inv[0], a[1] * P->inv[1], a[2] * P->inv[2],
-					                     a[3] * P->inv[3], a[4] * P->inv[4], a[5] * P->inv[5]};
-					const size_t row = row_of(P, i1.contact, j1);
-					for (int j2 = 0; j2 < P->dirs; ++j2) {
-						const double *b = g2 + 6 * j2;
-						const double w = h[0] * b[0] + h[1] * b[1] + h[2] * b[2] + h[3] * b[3] + h[4] * b[4] +
-						                 h[5] * b[5];
-						const size_t col = row_of(P, i2.contact, j2);
-						A[row * L + col] += w;
-						if (e2 != e1) // the mirror block (the diagonal block is computed whole)
-							A[col * L + row] += w;
+/// The contacts sharing a ball with contact i (itself included), ascending, into P->m.near;
+/// returns their count. Each ball's incidence list is ascending, so this merges two lists.
+static int near_contacts(const link_problem *P, int i) {
+	const link_contact *c = &P->c[i];
+	const link_incidence *inc = P->m.inc;
+	int ea = P->m.inc_start[c->a], ea_end = P->m.inc_start[c->a + 1];
+	int eb = c->b >= 0 ? P->m.inc_start[c->b] : 0, eb_end = c->b >= 0 ? P->m.inc_start[c->b + 1] : 0;
+	int count = 0;
+	while (ea < ea_end || eb < eb_end) {
+		const int ca = ea < ea_end ? inc[ea].contact : INT32_MAX, cb = eb < eb_end ? inc[eb].contact : INT32_MAX;
+		const int next = ca < cb ? ca : cb;
+		ea += ca == next;
+		eb += cb == next;
+		P->m.near[count++] = next;
+	}
+	return count;
+}
+
+/// The most nonzeros the LCP matrix can have: per impulse column, the impulse rows of the
+/// contacts sharing a ball with its contact and its own lambda row; per lambda column, its
+/// contact's friction rows.
+static size_t matrix_nonzeros(const link_problem *P) {
+	size_t nnz = 0;
+	for (int i = 0; i < P->nc; ++i)
+		nnz += (size_t)P->dirs * ((size_t)near_contacts(P, i) * (size_t)P->dirs + 1) + (size_t)P->eta;
+	return nnz;
+}
+
+/// W entry between contact i1's direction j1 and contact i2's direction j2, J' M^-1 J over the
+/// balls they share, in velocity units (times the mass; scale below).
+static double coupling(const link_problem *P, int i1, int j1, int i2, int j2, double mass) {
+	const link_contact *c1 = &P->c[i1], *c2 = &P->c[i2];
+	double w = 0.0;
+	for (int s1 = 0; s1 < (c1->b >= 0 ? 2 : 1); ++s1)
+		for (int s2 = 0; s2 < (c2->b >= 0 ? 2 : 1); ++s2) {
+			if ((s1 ? c1->b : c1->a) != (s2 ? c2->b : c2->a))
+				continue;
+			const double *a = directions(P, i1, s1) + 6 * j1, *b = directions(P, i2, s2) + 6 * j2;
+			for (int e = 0; e < 6; ++e)
+				w += a[e] * P->inv[e] * b[e];
+		}
+	return w * mass;
+}
+
+/// The LCP matrix by columns (lemke.h's compressed columns, rows ascending, nonzeros only): J'
+/// M^-1 J, one block per pair of contacts sharing a ball (M^-1 is per ball, so the blocks of
+/// contacts with no ball in common are zero), then E, -E' and mu. In velocity units: the
+/// impulse unknowns are impulses / mass (their columns times the mass) and the lambda rows
+/// (mu fn - E' beta, impulses) are divided by it, which leaves E, -E' and mu as they are.
+/// Positive scalings of unknowns and rows keep every solution; they make the entries O(1)
+/// (J' M^-1 J is ~1/m, 6 per kg for a pool ball) and Lemke's residual a velocity, comparable
+/// with q's. `compliance` is added to the impulse block's diagonal (the retries). Never formed
+/// densely: a rack's 47 contacts have 1.4e5 nonzeros of 5.7e5 entries.
+static void build_matrix(link_problem *P, double mass, double compliance) {
+	int *start = P->m.col_start, *row = P->m.col_row;
+	double *val = P->m.col_val;
+	size_t t = 0;
+#define LINK_PUT(r, v)                                                                                                 	do {                                                                                                           		const double value_ = (v);                                                                             		if (value_ != 0.0) {                                                                                   			row[t] = (int)(r);                                                                             			val[t++] = value_;                                                                             		}                                                                                                      	} while (0)
+	// Columns in unknown order: the friction directions of every contact, its normals, its lambdas.
+	for (int col = 0; col < P->L; ++col) {
+		start[col] = (int)t;
+		int i2, j2;
+		unknown_of(P, col, &i2, &j2);
+		if (j2 < 0) { // lambda: E on its contact's friction rows
+			for (int j = 1; j < P->dirs; ++j)
+				LINK_PUT(row_of(P, i2, j), 1.0);
+			continue;
+		}
+		// M^-1 times the column's generalized direction, per side of its contact.
+		const link_contact *c2 = &P->c[i2];
+		double h[2][6];
+		for (int side = 0; side < (c2->b >= 0 ? 2 : 1); ++side) {
+			const double *g = directions(P, i2, side) + 6 * j2;
+			for (int e = 0; e < 6; ++e)
+				h[side][e] = P->inv[e] * g[e] * mass;
+		}
+		const int near = near_contacts(P, i2);
+		for (int pass = 0; pass < 2; ++pass) // the friction rows, then the normal rows
+			for (int k = 0; k < near; ++k) {
+				const int i1 = P->m.near[k];
+				const link_contact *c1 = &P->c[i1];
+				int pairs = 0, s1_of[2], s2_of[2]; // the sides through which the two contacts share a ball
+				for (int s1 = 0; s1 < (c1->b >= 0 ? 2 : 1); ++s1)
+					for (int s2 = 0; s2 < (c2->b >= 0 ? 2 : 1); ++s2)
+						if ((s1 ? c1->b : c1->a) == (s2 ? c2->b : c2->a)) {
+							s1_of[pairs] = s1;
+							s2_of[pairs++] = s2;
+						}
+				for (int j1 = pass ? 0 : 1; j1 < (pass ? 1 : P->dirs); ++j1) {
+					double w = 0.0;
+					for (int q = 0; q < pairs; ++q) {
+						const double *a = directions(P, i1, s1_of[q]) + 6 * j1, *b = h[s2_of[q]];
+						w += a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
 					}
+					LINK_PUT(row_of(P, i1, j1), i1 == i2 && j1 == j2 ? w + compliance : w);
 				}
 			}
-	for (int i = 0; i < P->nc; ++i) {
-		const size_t lambda = lambda_of(P, i);
-		for (int j = 1; j < P->dirs; ++j) {
-			const size_t beta = row_of(P, i, j);
-			A[beta * L + lambda] = 1.0;  // E
-			A[lambda * L + beta] = -1.0; // -E'
-		}
-		A[lambda * L + row_of(P, i, 0)] = P->c[i].mu;
+		LINK_PUT(lambda_of(P, i2), j2 == 0 ? P->c[i2].mu : -1.0); // mu, or -E'
 	}
+	start[P->L] = (int)t;
+#undef LINK_PUT
 }
 
 /// b: the free relative velocity along every direction, the gap term on the normals, 0 on the
@@ -557,34 +658,21 @@ static void build_vector(link_problem *P, double dt) {
 	}
 }
 
-/// Puts the LCP in velocity units: the impulse unknowns (friction and normal) divided by the
-/// ball mass, the lambda rows (mu fn - E' beta, impulses) divided by it too. Positive scalings
-/// of unknowns and rows keep every solution of the LCP; they make M's entries O(1) (J' M^-1 J
-/// is ~1/m, 6 per kg for a pool ball) and Lemke's residual a velocity, comparable with q's.
-static void scale_to_velocity_units(link_problem *P, double mass) {
-	const size_t L = (size_t)P->L, impulses = (size_t)P->nc * (size_t)(P->eta + 1);
-	for (size_t r = 0; r < L; ++r) {
-		double *row = P->m.A + r * L;
-		for (size_t c = 0; c < impulses; ++c)
-			row[c] *= mass;
-		if (r >= impulses)
-			for (size_t c = 0; c < L; ++c)
-				row[c] /= mass;
-	}
-}
-
 /// The step's own check of a solve, in the LCP's velocity units: max over i of -z_i, -w_i and
-/// min(z_i, w_i), w = A z + q, relative to 1 + max |q| (a velocity scale that a wrong, huge z
-/// cannot inflate, unlike Lemke's own scale of the terms of A z).
-static double velocity_residual(const double *A, const double *q, const double *z, int L) {
+/// min(z_i, w_i), w = A z + q (A by columns), relative to 1 + max |q| (a velocity scale that a
+/// wrong, huge z cannot inflate, unlike Lemke's own scale of the terms of A z). w goes in
+/// `scratch` (L doubles).
+static double velocity_residual(const link_problem *P, const double *z, double *w) {
+	const int L = P->L;
+	memcpy(w, P->m.q, sizeof(double) * (size_t)L);
+	for (int j = 0; j < L; ++j)
+		if (z[j] != 0.0)
+			for (int t = P->m.col_start[j]; t < P->m.col_start[j + 1]; ++t)
+				w[P->m.col_row[t]] += P->m.col_val[t] * z[j];
 	double worst = 0.0, scale = 1.0;
 	for (int i = 0; i < L; ++i) {
-		double w = q[i];
-		const double *row = A + (size_t)i * (size_t)L;
-		for (int j = 0; j < L; ++j)
-			w += row[j] * z[j];
-		worst = fmax(worst, fmax(fmax(-z[i], -w), fmin(z[i], w)));
-		scale = fmax(scale, 1.0 + fabs(q[i]));
+		worst = fmax(worst, fmax(fmax(-z[i], -w[i]), fmin(z[i], w[i])));
+		scale = fmax(scale, 1.0 + fabs(P->m.q[i]));
 	}
 	return isfinite(worst) ? worst / scale : INFINITY;
 }
@@ -608,25 +696,9 @@ static void apply_impulses(link_problem *P) {
 
 // ---- warm start without the matrix
 
-/// Unknown r of the LCP: its contact, and its direction (0 the normal, 1 ... eta friction, -1
-/// the contact's lambda); the inverse of row_of and lambda_of.
-static void unknown_of(const link_problem *P, int r, int *contact, int *dir) {
-	const int friction = P->nc * P->eta, impulses = friction + P->nc;
-	if (r < friction) {
-		*contact = r / P->eta;
-		*dir = 1 + r % P->eta;
-	} else if (r < impulses) {
-		*contact = r - friction;
-		*dir = 0;
-	} else {
-		*contact = r - impulses;
-		*dir = -1;
-	}
-}
-
-/// Entry (r, c) of the LCP matrix as build_matrix and scale_to_velocity_units make it, computed
-/// on its own: J' M^-1 J (times the mass) over the balls the two contacts share, 1 (E), -1
-/// (-E') and mu inside a contact, 0 elsewhere.
+/// Entry (r, c) of the LCP matrix as build_matrix makes it (without a compliance), computed on
+/// its own: J' M^-1 J (times the mass) over the balls the two contacts share, 1 (E), -1 (-E')
+/// and mu inside a contact, 0 elsewhere.
 static double matrix_entry(const link_problem *P, int r, int c, double mass) {
 	int ir, jr, ic, jc;
 	unknown_of(P, r, &ir, &jr);
@@ -635,17 +707,7 @@ static double matrix_entry(const link_problem *P, int r, int c, double mass) {
 		return ir != ic || jc < 0 ? 0.0 : jc == 0 ? P->c[ir].mu : -1.0;
 	if (jc < 0) // the lambda column: E on its contact's friction rows
 		return ir == ic && jr > 0 ? 1.0 : 0.0;
-	const link_contact *cr = &P->c[ir], *cc = &P->c[ic];
-	double w = 0.0;
-	for (int sr = 0; sr < (cr->b >= 0 ? 2 : 1); ++sr)
-		for (int scol = 0; scol < (cc->b >= 0 ? 2 : 1); ++scol) {
-			if ((sr ? cr->b : cr->a) != (scol ? cc->b : cc->a))
-				continue;
-			const double *a = directions(P, ir, sr) + 6 * jr, *b = directions(P, ic, scol) + 6 * jc;
-			for (int e = 0; e < 6; ++e)
-				w += a[e] * P->inv[e] * b[e];
-		}
-	return w * mass;
+	return coupling(P, ir, jr, ic, jc, mass);
 }
 
 /// Solves the k x k system S y = b in place (Gaussian elimination, partial pivoting; y in b).
@@ -758,10 +820,9 @@ static int solve_from_basis(link_problem *P, double mass, double *residual) {
 	for (int j = 0; j < L; ++j)
 		if (P->m.basis[j])
 			B[k++] = j;
-	// The system and its right-hand side in the matrix's memory (unused on this path).
-	if ((size_t)k * (size_t)(k + 1) > (size_t)L * (size_t)L)
+	if (k > POOL_LINK_WARM_BASIC_MAX)
 		return 0;
-	double *S = P->m.A, *y = P->m.A + (size_t)k * (size_t)k;
+	double *S = P->m.S, *y = P->m.S + (size_t)k * (size_t)k;
 	for (int p = 0; p < k; ++p) {
 		for (int t = 0; t < k; ++t)
 			S[p * k + t] = matrix_entry(P, B[p], B[t], mass);
@@ -853,17 +914,32 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	P.dirs = 1 + eta;
 	P.L = nc * (eta + 2);
 	P.stick_slip = 0.5 * 3.5 * def->params.mu_slide * def->params.g * dt;
-	pool_result r = reserve(ws, alloc, layout(NULL, n, nc, eta, NULL));
-	if (r)
-		return r;
-	layout(ws->memory, n, nc, eta, &P.m);
-	find_contacts(&sc, P.m.contacts);
-	P.c = P.m.contacts;
+	// The matrix's nonzeros are known once the contacts are: laid out for the workspace's room
+	// (at least what contacts sharing a ball with four others each need), and again when this
+	// step needs more.
+	pool_result r = POOL_OK;
+	const size_t dirs = (size_t)P.dirs;
+	size_t room = (size_t)nc * (dirs * (POOL_LINK_NEAR_GUESS * dirs + 1) + (size_t)eta);
+	if (room < ws->matrix_nonzeros)
+		room = ws->matrix_nonzeros;
+	for (int pass = 0; pass < 2; ++pass) {
+		r = reserve(ws, alloc, layout(NULL, n, nc, eta, room, NULL));
+		if (r)
+			return r;
+		layout(ws->memory, n, nc, eta, room, &P.m);
+		find_contacts(&sc, P.m.contacts);
+		P.c = P.m.contacts;
+		build_incidence(&P);
+		const size_t nnz = matrix_nonzeros(&P);
+		if (nnz <= room)
+			break;
+		room = nnz;
+	}
+	ws->matrix_nonzeros = room;
 
 	free_velocities(&sc, P.c, nc, dt, P.m.V);
 	memcpy(P.m.V_free, P.m.V, sizeof(double) * 6 * (size_t)n);
 	build_directions(&P, options->align_friction);
-	build_incidence(&P);
 	build_vector(&P, dt);
 
 	// Warm start: each contact's basis from the last step that solved it (none: all w basic,
@@ -904,18 +980,17 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 			build_directions(&P, ladder[attempt].align);
 			build_vector(&P, dt);
 		}
-		build_matrix(&P);
-		scale_to_velocity_units(&P, mass);
-		for (int i = 0; i < nc * (eta + 1); ++i)
-			P.m.A[(size_t)i * (size_t)P.L + (size_t)i] += ladder[attempt].compliance;
+		build_matrix(&P, mass, ladder[attempt].compliance);
 		if (attempt > 0)
 			for (int i = 0; i < P.L; ++i)
 				P.m.basis[i] = 0;
 		memset(&ls, 0, sizeof ls);
-		status = pool_lemke_solve(P.L, P.m.A, P.m.q, P.m.z, P.m.basis, 0, P.m.lemke, &ls);
+		status = pool_lemke_solve_columns(P.L, P.m.col_start, P.m.col_row, P.m.col_val, P.m.q, P.m.z, P.m.basis, 0,
+		                                  P.m.lemke, &ls);
 		pivots += ls.pivots;
 		if (status == POOL_LEMKE_SOLVED || status == POOL_LEMKE_RESIDUAL) {
-			ls.residual = velocity_residual(P.m.A, P.m.q, P.m.z, P.L);
+			// (Lemke's workspace, done with, holds w)
+			ls.residual = velocity_residual(&P, P.m.z, (double *)P.m.lemke);
 			if (ls.residual <= POOL_LINK_RESIDUAL_MAX) {
 				status = POOL_LEMKE_SOLVED;
 				break;
@@ -934,7 +1009,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 		return POOL_ERR_INTERNAL;
 
 	for (int i = 0; i < nc * (eta + 1); ++i)
-		P.m.z[i] *= mass; // back to impulses (scale_to_velocity_units)
+		P.m.z[i] *= mass; // back to impulses (build_matrix's velocity units)
 	apply_impulses(&P);
 	for (int k = 0; k < 6 * n; ++k)
 		if (!isfinite(P.m.V[k]))

@@ -63,6 +63,7 @@ typedef struct pool_link_step_stats {
 typedef struct pool_link_workspace {
 	void *memory;
 	size_t bytes;
+	size_t matrix_nonzeros; ///< the LCP matrix's room: the most nonzeros a step has needed
 	pool_link_bases bases; ///< warm starts: each contact's basis in the last step that solved it
 	/// After a successful step, per ball of the step (n of them, valid until the next step):
 	double *ball_push; ///< m/s, its largest normal impulse / ball mass at a ball-ball or

@@ -388,7 +388,7 @@ static double tl_max_diff(int n, const double *a, const double *b) {
 // relative 1e-7 sin(3 i), which keeps the basis of a nondegenerate solution.
 static void tl_warm_case(int n, double *M, double *q, const char *what, int scale_only) {
 	double *z = malloc((size_t)n * sizeof *z), *zc = malloc((size_t)n * sizeof *zc);
-	int *basis = malloc((size_t)n * sizeof *basis);
+	int *basis = calloc((size_t)n, sizeof *basis); // no warm start for the first solve
 	pool_lemke_stats st = tl_solve_ok(n, M, q, z, basis, what);
 	assert_int_equal(st.warm, 0);
 	int basic = 0;
@@ -446,7 +446,7 @@ static void test_warm_start_changed(void **state) {
 			for (uint64_t seed = 0; seed < 3; ++seed) {
 				tl_friction f = tl_friction_make(K, 300 + seed, 0);
 				double *z = malloc((size_t)f.n * sizeof *z);
-				int *basis = malloc((size_t)f.n * sizeof *basis);
+				int *basis = calloc((size_t)f.n, sizeof *basis);
 				tl_solve_ok(f.n, f.A, f.b, z, basis, "warm start, first step");
 				tl_friction next = tl_friction_make_changed(K, 300 + seed, 0, changes[c]);
 				memcpy(f.b, next.b, (size_t)f.n * sizeof *f.b);
@@ -613,6 +613,74 @@ static void test_deterministic(void **state) {
 	tl_friction_free(&f);
 }
 
+// The same problems by columns (pool_lemke_solve_columns): the same answer and path, bit for bit,
+// as the dense M, cold and warm; malformed columns are refused.
+static void test_columns(void **state) {
+	(void)state;
+	const int sizes[] = {3, 10, 30};
+	for (size_t c = 0; c < sizeof sizes / sizeof *sizes; ++c) {
+		tl_friction f = tl_friction_make(sizes[c], 40 + c, 0);
+		const int n = f.n;
+		int *start = malloc((size_t)(n + 1) * sizeof *start), *row = malloc((size_t)n * (size_t)n * sizeof *row);
+		double *val = malloc((size_t)n * (size_t)n * sizeof *val);
+		int t = 0;
+		for (int j = 0; j < n; ++j) {
+			start[j] = t;
+			for (int i = 0; i < n; ++i)
+				if (f.A[i * n + j] != 0.0) {
+					row[t] = i;
+					val[t++] = f.A[i * n + j];
+				}
+		}
+		start[n] = t;
+		double *z1 = malloc((size_t)n * sizeof *z1), *z2 = malloc((size_t)n * sizeof *z2);
+		int *b1 = calloc((size_t)n, sizeof *b1), *b2 = calloc((size_t)n, sizeof *b2);
+		void *ws = malloc(pool_lemke_workspace_bytes(n));
+		for (int warm = 0; warm < 2; ++warm) { // cold, then from the basis of the cold solve
+			pool_lemke_stats s1, s2;
+			assert_int_equal(pool_lemke_solve(n, f.A, f.b, z1, b1, 0, ws, &s1), POOL_LEMKE_SOLVED);
+			assert_int_equal(pool_lemke_solve_columns(n, start, row, val, f.b, z2, b2, 0, ws, &s2), POOL_LEMKE_SOLVED);
+			assert_memory_equal(z1, z2, (size_t)n * sizeof *z1);
+			assert_memory_equal(b1, b2, (size_t)n * sizeof *b1);
+			assert_int_equal(s1.pivots, s2.pivots);
+			assert_int_equal(s1.warm, warm);
+			assert_int_equal(s2.warm, warm);
+		}
+		pool_lemke_stats st;
+		if (t >= 2 && start[1] - start[0] >= 2) {
+			const int keep = row[0];
+			row[0] = row[1]; // not ascending
+			assert_int_equal(pool_lemke_solve_columns(n, start, row, val, f.b, z2, NULL, 0, ws, &st), POOL_LEMKE_BAD_INPUT);
+			row[0] = n; // out of range
+			assert_int_equal(pool_lemke_solve_columns(n, start, row, val, f.b, z2, NULL, 0, ws, &st), POOL_LEMKE_BAD_INPUT);
+			row[0] = keep;
+		}
+		const double keep_val = val[0];
+		val[0] = NAN;
+		assert_int_equal(pool_lemke_solve_columns(n, start, row, val, f.b, z2, NULL, 0, ws, &st), POOL_LEMKE_BAD_INPUT);
+		val[0] = keep_val;
+		start[0] = 1;
+		assert_int_equal(pool_lemke_solve_columns(n, start, row, val, f.b, z2, NULL, 0, ws, &st), POOL_LEMKE_BAD_INPUT);
+		start[0] = 0;
+		const int keep_start = start[1];
+		start[1] = start[2] + 1; // a column ending after the next one's end
+		if (n > 2)
+			assert_int_equal(pool_lemke_solve_columns(n, start, row, val, f.b, z2, NULL, 0, ws, &st), POOL_LEMKE_BAD_INPUT);
+		start[1] = keep_start;
+		assert_int_equal(pool_lemke_solve_columns(n, NULL, row, val, f.b, z2, NULL, 0, ws, &st), POOL_LEMKE_BAD_INPUT);
+		assert_int_equal(pool_lemke_solve_columns(n, start, NULL, val, f.b, z2, NULL, 0, ws, &st), POOL_LEMKE_BAD_INPUT);
+		free(ws);
+		free(z1);
+		free(z2);
+		free(b1);
+		free(b2);
+		free(start);
+		free(row);
+		free(val);
+		tl_friction_free(&f);
+	}
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 	    cmocka_unit_test(test_friction_random),
@@ -627,6 +695,7 @@ int main(void) {
 	    cmocka_unit_test(test_not_copositive),
 	    cmocka_unit_test(test_pivot_budget),
 	    cmocka_unit_test(test_deterministic),
+	    cmocka_unit_test(test_columns),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
