@@ -483,6 +483,11 @@ static double align_slip_of(const link_problem *P, const link_contact *c) {
 static void build_directions(link_problem *P, int align) {
 	const int eta = P->eta;
 	P->aligned = align;
+	double cosine[POOL_LINK_ETA_MAX / 2], sine[POOL_LINK_ETA_MAX / 2]; // of the directions' angles
+	for (int j = 0; j < eta / 2; ++j) {
+		cosine[j] = cos(2.0 * LINK_PI * j / eta);
+		sine[j] = sin(2.0 * LINK_PI * j / eta);
+	}
 	for (int i = 0; i < P->nc; ++i) {
 		const link_contact *c = &P->c[i];
 		pool_vec3 t1, t2;
@@ -490,8 +495,7 @@ static void build_directions(link_problem *P, int align) {
 		pool_vec3 d[POOL_LINK_ETA_MAX + 1];
 		d[0] = c->n;
 		for (int j = 0; j < eta / 2; ++j) {
-			const double angle = 2.0 * LINK_PI * j / eta;
-			d[1 + j] = pool_v3_add(pool_v3_scale(t1, cos(angle)), pool_v3_scale(t2, sin(angle)));
+			d[1 + j] = pool_v3_add(pool_v3_scale(t1, cosine[j]), pool_v3_scale(t2, sine[j]));
 			d[1 + j + eta / 2] = pool_v3_scale(d[1 + j], -1.0);
 		}
 		for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
