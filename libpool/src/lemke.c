@@ -104,6 +104,7 @@
 typedef struct lemke {
 	int n, k;         // k: basic columns of A = rows with a nonbasic w
 	const double *q;
+	const double *dense; // M row-major when the caller gave it so (entries then read directly), else NULL
 	double *G;        // A_RC^-1, k x k, leading dimension n: G[slot_c * n + slot_r]
 	double *ARC;      // A_RC itself, k x k, leading dimension n: ARC[slot_r * n + slot_c]
 	const int *mstart; // M by columns: column j is mval/mrow[mstart[j] .. mstart[j + 1]), rows
@@ -245,8 +246,11 @@ static inline double dot(const double *a, const double *b, int k) {
 
 // --- columns of A = [-M | -d] ---
 
-// M_ic: a binary search of column c's rows (a column of M has at most a few hundred).
+// M_ic: read from a dense M, else a binary search of column c's rows (a column of a LINK
+// step's M has at most a few hundred).
 static inline double entry_of_M(const lemke *L, int i, int c) {
+	if (L->dense)
+		return L->dense[(size_t)i * (size_t)L->n + (size_t)c];
 	int lo = L->mstart[c], hi = L->mstart[c + 1];
 	while (lo < hi) {
 		const int mid = lo + (hi - lo) / 2;
@@ -955,7 +959,7 @@ pool_lemke_status pool_lemke_solve(int n, const double *M, const double *q, doub
 		return status;
 	if (!M)
 		return POOL_LEMKE_BAD_INPUT;
-	lemke L = {.n = n, .q = q};
+	lemke L = {.n = n, .q = q, .dense = M};
 	carve(&L, workspace);
 	if (load_dense(&L, M))
 		return POOL_LEMKE_BAD_INPUT;
