@@ -1,4 +1,6 @@
-// One LINK step of a cluster (PHYSICS.md "LINK"; the API and its rules are in link_step.h).
+// One LINK step of a cluster (PHYSICS.md "LINK"; the API and its rules are in link_step.h): the
+// contacts, the free velocities, the LCP by columns and Lemke; the warm start, which usually
+// solves the step without them, is link_warm.c's (the shared layout: link_problem.h).
 //
 // Unknowns, in PHYSICS.md's order, for nc contacts of eta friction directions each:
 //   x = (dt beta [nc * eta], dt fn [nc], lambda [nc]),   size L = nc (eta + 2),
@@ -49,6 +51,7 @@
 
 #include "geometry.h"
 #include "lemke.h"
+#include "link_problem.h"
 #include "vec3.h"
 
 /// Fraction of an existing penetration the step removes (Baumgarte): a fifth per step spreads a
@@ -76,38 +79,7 @@
 /// between two such balls shares a ball with 5; a larger cluster is laid out again.
 #define POOL_LINK_NEAR_GUESS 5
 
-/// Basic unknowns above which the warm start goes straight to Lemke rather than solve their
-/// system densely itself (k^3 / 3): a rack's cluster keeps about 150 basic.
-#define POOL_LINK_WARM_BASIC_MAX 256
-
-/// m/s, tangential slip below which a contact's friction directions are not aligned with it
-/// (its direction is then rounding noise): fixed directions instead.
-#define POOL_LINK_ALIGN_SLIP 1e-9
-
-/// The warm start's elimination treats a pivot below this fraction of its column's largest
-/// entry as zero (the basis is then singular and Lemke solves the step), Lemke's own rule.
-#define POOL_LINK_SINGULAR_REL 1e-14
-
 #define LINK_PI 3.14159265358979323846
-
-typedef enum link_kind { LINK_BALL = 0, LINK_CLOTH = 1, LINK_CUSHION = 2 } link_kind;
-
-/// One contact of the step: ball a (body 1) against ball b, the cloth or a cushion nose.
-typedef struct link_contact {
-	link_kind kind;
-	int a, b;         ///< ball indices; b = -1 for the cloth and the cushions
-	int rail;         ///< pool_rail of a cushion contact, else POOL_RAIL_NONE
-	pool_vec3 n;      ///< unit normal, towards ball a
-	pool_vec3 ra, rb; ///< from each centre to the contact point
-	double gap;       ///< m, distance between the surfaces (< 0: penetration)
-	double mu;        ///< friction of the pair
-} link_contact;
-
-/// A contact's place in a ball's incidence list: the contact and which side the ball is on.
-typedef struct link_incidence {
-	int contact;
-	int side; ///< 0: ball a, 1: ball b
-} link_incidence;
 
 void pool_link_workspace_free(pool_link_workspace *ws, const pool_allocator *alloc) {
 	if (!ws)
@@ -210,28 +182,7 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 	return count;
 }
 
-/// Who contact c is between (link_basis.h): its kind, the ball ids, the rail of a cushion.
-static pool_link_contact_id contact_id(const link_contact *c, const pool_ball_state *s) {
-	const pool_link_contact_id id = {(int32_t)c->kind, s[c->a].id,
-	                                 c->kind == LINK_BALL ? s[c->b].id : (int32_t)c->rail};
-	return id;
-}
-
 // ---- velocities of the contact points
-
-/// Velocity of ball k's material point at offset r from its centre.
-static pool_vec3 point_velocity(const double *V, int k, pool_vec3 r) {
-	const double *v = V + 6 * k;
-	return pool_v3_add(pool_v3(v[0], v[1], v[2]), pool_v3_cross(pool_v3(v[3], v[4], v[5]), r));
-}
-
-/// Relative velocity at a contact: ball a's contact point minus the other body's.
-static pool_vec3 contact_velocity(const link_contact *c, const double *V) {
-	pool_vec3 u = point_velocity(V, c->a, c->ra);
-	if (c->b >= 0)
-		u = pool_v3_sub(u, point_velocity(V, c->b, c->rb));
-	return u;
-}
 
 /// Unit vectors t1, t2 completing n to a right-handed basis: t1 along the tangential slip u_t
 /// when aligning and the slip is resolved, else fixed (k x n, or x on the cloth).
@@ -254,27 +205,6 @@ static void tangent_basis(pool_vec3 n, pool_vec3 slip, int align, double align_s
 }
 
 // ---- workspace
-
-typedef struct link_memory {
-	int *basis;            // L
-	int *basic;            // L: the warm start's basic unknowns
-	double *S;             // the warm start's k x k system and right-hand side, k <= POOL_LINK_WARM_BASIC_MAX
-	int *col_start;        // L + 1: the LCP matrix by columns (lemke.h), nonzeros only
-	int *col_row;          // nnz_max
-	double *col_val;       // nnz_max
-	int *near;             // nc: scratch, the contacts sharing a ball with one contact
-	double *q, *z;         // L
-	double *V;             // 6 n: free velocities, then the step's
-	double *G;             // nc x 2 x (1 + eta) x 6: generalized directions, per side
-	link_contact *contacts; // nc
-	link_incidence *inc;   // 2 nc
-	int *inc_start;        // n + 1
-	double *ball_push;     // n
-	int *ball_touching;    // n
-	double *tail;          // 6 n: end-of-step velocity less the mean (half the cloth wrenches)
-	double *V_free;        // 6 n: the free velocities, kept to measure the contacts' effect
-	void *lemke;
-} link_memory;
 
 static size_t align_up(size_t x) { return (x + 15u) & ~(size_t)15u; }
 
@@ -435,49 +365,6 @@ static double speed_bound(const link_scene *sc, double dt) {
 	return sqrt(energy) + POOL_LINK_PUSH_SPEED;
 }
 
-/// What the building blocks of a step share.
-typedef struct link_problem {
-	link_memory m;
-	const link_contact *c;
-	int n, nc, eta, dirs, L;
-	double inv[6]; ///< M^-1 of a ball: 1/m three times, 1/I three times
-	double stick_slip; ///< m/s, cloth slip the step's cloth friction surely stops (build_directions)
-	int aligned;       ///< the friction directions lie along the slips (build_directions)
-} link_problem;
-
-/// Contact i's side of ball a (side 0) or b (side 1): its dirs generalized directions, 6 each.
-static double *directions(const link_problem *P, int i, int side) {
-	return P->m.G + ((size_t)i * 2 + (size_t)side) * (size_t)P->dirs * 6;
-}
-
-/// Index in x of contact i's direction j (0 the normal, 1 ... eta friction): friction first,
-/// then the normals, then the lambdas, as PHYSICS.md orders them.
-static size_t row_of(const link_problem *P, int i, int j) {
-	return (size_t)(j == 0 ? P->nc * P->eta + i : i * P->eta + j - 1);
-}
-static size_t lambda_of(const link_problem *P, int i) { return (size_t)(P->nc * (P->eta + 1) + i); }
-
-/// Unknown r of the LCP: its contact, and its direction (0 the normal, 1 ... eta friction, -1
-/// the contact's lambda); the inverse of row_of and lambda_of.
-static void unknown_of(const link_problem *P, int r, int *contact, int *dir) {
-	const int friction = P->nc * P->eta, impulses = friction + P->nc;
-	if (r < friction) {
-		*contact = r / P->eta;
-		*dir = 1 + r % P->eta;
-	} else if (r < impulses) {
-		*contact = r - friction;
-		*dir = 0;
-	} else {
-		*contact = r - impulses;
-		*dir = -1;
-	}
-}
-
-/// m/s, the tangential slip above which contact c's first friction direction lies along it.
-static double align_slip_of(const link_problem *P, const link_contact *c) {
-	return c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;
-}
-
 /// G = sigma [d; r x d] per contact side (sigma = -1 for ball b): direction 0 the normal, 1 ...
 /// eta the friction directions, d_{j + eta/2} = -d_j exactly.
 static void build_directions(link_problem *P, int align) {
@@ -569,7 +456,7 @@ static size_t matrix_nonzeros(const link_problem *P) {
 
 /// W entry between contact i1's direction j1 and contact i2's direction j2, J' M^-1 J over the
 /// balls they share, in velocity units (times the mass; scale below).
-static double coupling(const link_problem *P, int i1, int j1, int i2, int j2, double mass) {
+double pool_link_coupling(const link_problem *P, int i1, int j1, int i2, int j2, double mass) {
 	const link_contact *c1 = &P->c[i1], *c2 = &P->c[i2];
 	double w = 0.0;
 	for (int s1 = 0; s1 < (c1->b >= 0 ? 2 : 1); ++s1)
@@ -698,190 +585,6 @@ static void apply_impulses(link_problem *P) {
 	}
 }
 
-// ---- warm start without the matrix
-
-/// Entry (r, c) of the LCP matrix as build_matrix makes it (without a compliance), computed on
-/// its own: J' M^-1 J (times the mass) over the balls the two contacts share, 1 (E), -1 (-E')
-/// and mu inside a contact, 0 elsewhere.
-static double matrix_entry(const link_problem *P, int r, int c, double mass) {
-	int ir, jr, ic, jc;
-	unknown_of(P, r, &ir, &jr);
-	unknown_of(P, c, &ic, &jc);
-	if (jr < 0) // a lambda row: mu fn - E' beta of its own contact
-		return ir != ic || jc < 0 ? 0.0 : jc == 0 ? P->c[ir].mu : -1.0;
-	if (jc < 0) // the lambda column: E on its contact's friction rows
-		return ir == ic && jr > 0 ? 1.0 : 0.0;
-	return coupling(P, ir, jr, ic, jc, mass);
-}
-
-/// Solves the k x k system S y = b in place (Gaussian elimination, partial pivoting; y in b).
-/// Returns -1 when S is numerically singular (a pivot below POOL_LINK_SINGULAR_REL of its
-/// column's largest entry).
-static int solve_dense(double *S, double *b, int k) {
-	for (int c = 0; c < k; ++c) {
-		int best = c;
-		double big = 0.0, colmax = 0.0;
-		for (int r = 0; r < k; ++r) {
-			const double e = fabs(S[r * k + c]);
-			colmax = fmax(colmax, e);
-			if (r >= c && e > big)
-				big = e, best = r;
-		}
-		if (!(big > POOL_LINK_SINGULAR_REL * colmax) || !isfinite(big))
-			return -1;
-		if (best != c) {
-			for (int e = 0; e < k; ++e) {
-				const double t = S[c * k + e];
-				S[c * k + e] = S[best * k + e];
-				S[best * k + e] = t;
-			}
-			const double t = b[c];
-			b[c] = b[best];
-			b[best] = t;
-		}
-		for (int r = c + 1; r < k; ++r) {
-			const double f = S[r * k + c] / S[c * k + c];
-			if (f == 0.0)
-				continue;
-			for (int e = c; e < k; ++e)
-				S[r * k + e] -= f * S[c * k + e];
-			b[r] -= f * b[c];
-		}
-	}
-	for (int r = k - 1; r >= 0; --r) {
-		double sum = b[r];
-		for (int e = r + 1; e < k; ++e)
-			sum -= S[r * k + e] * b[e];
-		b[r] = sum / S[r * k + r];
-	}
-	return 0;
-}
-
-/// Each contact's unknowns in the basis from the bases kept by contact.
-/// A touching contact no step has solved yet is guessed pressed (the cluster formed because
-/// its balls press), sliding against its slip when its first friction direction lies along one
-/// (its lambda and the opposite direction basic), else sticking with no friction: right for a
-/// ball on the cloth and for most pushes, so the first step of a cluster rarely needs Lemke.
-static void guess_basis(link_problem *P, int i) {
-	const link_contact *c = &P->c[i];
-	if (!(c->gap <= POOL_LINK_TOUCH_GAP))
-		return; // open: all w basic
-	P->m.basis[row_of(P, i, 0)] = 1;
-	if (!P->aligned)
-		return;
-	const pool_vec3 u = contact_velocity(c, P->m.V);
-	const pool_vec3 ut = pool_v3_madd(u, -pool_v3_dot(u, c->n), c->n);
-	if (pool_v3_len(ut) > align_slip_of(P, c)) {
-		P->m.basis[lambda_of(P, i)] = 1;
-		P->m.basis[row_of(P, i, 1 + P->eta / 2)] = 1;
-	}
-}
-
-static void recall_bases(link_problem *P, const pool_ball_state *s, const pool_link_bases *bases) {
-	for (int j = 0; j < P->L; ++j)
-		P->m.basis[j] = 0;
-	for (int i = 0; i < P->nc; ++i) {
-		pool_link_contact_basis b;
-		if (!pool_link_bases_find(bases, contact_id(&P->c[i], s), &b)) {
-			guess_basis(P, i);
-			continue;
-		}
-		P->m.basis[row_of(P, i, 0)] = b.normal;
-		P->m.basis[lambda_of(P, i)] = b.lambda;
-		for (int j = 1; j < P->dirs; ++j)
-			P->m.basis[row_of(P, i, j)] = (int)((b.friction >> (j - 1)) & 1u);
-	}
-}
-
-/// Keeps each contact's part of the solved basis for the next step. A table that cannot grow
-/// loses the bases it has no room for: the steps stay right, the next ones solve cold.
-static void store_bases(const link_problem *P, const pool_ball_state *s, pool_link_bases *bases,
-                        const pool_allocator *alloc) {
-	for (int i = 0; i < P->nc; ++i) {
-		pool_link_contact_basis b = {0, (uint8_t)(P->m.basis[row_of(P, i, 0)] != 0),
-		                             (uint8_t)(P->m.basis[lambda_of(P, i)] != 0)};
-		for (int j = 1; j < P->dirs; ++j)
-			if (P->m.basis[row_of(P, i, j)])
-				b.friction |= (uint64_t)1 << (j - 1);
-		if (pool_link_bases_store(bases, alloc, contact_id(&P->c[i], s), b))
-			return;
-	}
-}
-
-/// The previous step's basis, tried before any matrix is built: a cluster's contacts rarely
-/// change between steps, so its basic unknowns (per touching contact the normal, lambda and
-/// one or two friction directions: k of L, k ~ L / 6) usually still solve it. Their k x k
-/// system M_BB z_B = -q_B is formed from matrix_entry and the answer (rounding below zero
-/// clamped) is accepted when every row of w = M z + q passes the step's velocity residual at
-/// Lemke's bound, POOL_LEMKE_RESIDUAL_MAX relative to 1 + max |q| (stricter than Lemke's own
-/// test, relative to the size of the terms, and than the POOL_LINK_RESIDUAL_MAX a step accepts).
-/// w comes from the velocities the impulses make (M z is J' of them), so the whole check costs
-/// L + k^3 / 3 operations, where building the matrix for Lemke costs L^2: 2 us instead of 17
-/// for a pushing pair. Returns 1 with P->m.z set (velocity units) and *residual.
-static int solve_from_basis(link_problem *P, double mass, double *residual) {
-	const int L = P->L;
-	int *B = P->m.basic, k = 0;
-	for (int j = 0; j < L; ++j)
-		if (P->m.basis[j])
-			B[k++] = j;
-	if (k > POOL_LINK_WARM_BASIC_MAX)
-		return 0;
-	double *S = P->m.S, *y = P->m.S + (size_t)k * (size_t)k;
-	for (int p = 0; p < k; ++p) {
-		for (int t = 0; t < k; ++t)
-			S[p * k + t] = matrix_entry(P, B[p], B[t], mass);
-		y[p] = -P->m.q[B[p]];
-	}
-	if (solve_dense(S, y, k))
-		return 0;
-	double *z = P->m.z;
-	for (int j = 0; j < L; ++j)
-		z[j] = 0.0;
-	for (int p = 0; p < k; ++p)
-		z[B[p]] = y[p] > 0.0 ? y[p] : 0.0;
-	// The velocity change the impulses make (z in velocity units: impulse / mass), in the
-	// tail's memory (step_tail fills it after the solve).
-	double *dV = P->m.tail;
-	for (int e = 0; e < 6 * P->n; ++e)
-		dV[e] = 0.0;
-	for (int p = 0; p < k; ++p) {
-		int i, j;
-		unknown_of(P, B[p], &i, &j);
-		if (j < 0 || z[B[p]] == 0.0)
-			continue;
-		const link_contact *c = &P->c[i];
-		for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
-			const double *g = directions(P, i, side) + 6 * j;
-			double *d = dV + 6 * (side ? c->b : c->a);
-			for (int e = 0; e < 6; ++e)
-				d[e] += mass * z[B[p]] * P->inv[e] * g[e];
-		}
-	}
-	double worst = 0.0, qmax = 0.0;
-	for (int i = 0; i < P->nc; ++i) {
-		const link_contact *c = &P->c[i];
-		double friction = 0.0;
-		for (int j = 0; j < P->dirs; ++j) {
-			const size_t r = row_of(P, i, j);
-			double w = P->m.q[r];
-			for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
-				const double *g = directions(P, i, side) + 6 * j, *d = dV + 6 * (side ? c->b : c->a);
-				w += g[0] * d[0] + g[1] * d[1] + g[2] * d[2] + g[3] * d[3] + g[4] * d[4] + g[5] * d[5];
-			}
-			if (j > 0) {
-				w += z[lambda_of(P, i)];
-				friction += z[r];
-			}
-			worst = fmax(worst, fmax(-w, fmin(z[r], w)));
-			qmax = fmax(qmax, fabs(P->m.q[r]));
-		}
-		const size_t l = lambda_of(P, i);
-		const double w = c->mu * z[row_of(P, i, 0)] - friction;
-		worst = fmax(worst, fmax(-w, fmin(z[l], w)));
-	}
-	*residual = isfinite(worst) ? worst / (1.0 + qmax) : INFINITY;
-	return *residual <= POOL_LEMKE_RESIDUAL_MAX;
-}
 
 pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int n, double dt,
                                 const pool_link_options *options, pool_link_workspace *ws,
@@ -948,7 +651,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 
 	// Warm start: each contact's basis from the last step that solved it (none: all w basic,
 	// right for a contact that stays open).
-	recall_bases(&P, s, &ws->bases);
+	pool_link_recall_bases(&P, s, &ws->bases);
 	// The friction LCP always has a solution, but its degeneracy (every unused friction
 	// direction of a sticking contact at w = 0) can defeat Lemke's tie-breaking in floating
 	// point: a false ray, or a residual above the limit. Each failure is retried from a cold
@@ -974,7 +677,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	memset(&ls, 0, sizeof ls);
 	pool_lemke_status status = POOL_LEMKE_BAD_INPUT;
 	int pivots = 0;
-	if (solve_from_basis(&P, mass, &ls.residual)) {
+	if (pool_link_solve_from_basis(&P, mass, &ls.residual)) {
 		status = POOL_LEMKE_SOLVED;
 		ls.warm = 1;
 	}
@@ -1021,7 +724,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	if (sc.planar)
 		for (int k = 0; k < n; ++k)
 			P.m.V[6 * k + 2] = 0.0;
-	store_bases(&P, s, &ws->bases, alloc);
+	pool_link_store_bases(&P, s, &ws->bases, alloc);
 
 	// What presses each ball: the push its ball-ball and cushion contacts carried over the step,
 	// as a speed (dt fn / m), touching at the start or closed by the step.

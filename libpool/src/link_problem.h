@@ -1,0 +1,133 @@
+// The inside of a LINK step (link_step.c), shared with its warm start (link_warm.c): the contacts,
+// the step's memory, the problem's layout of unknowns and the few helpers both use.
+#ifndef POOL_LINK_PROBLEM_H
+#define POOL_LINK_PROBLEM_H
+
+#include <math.h>
+#include <stddef.h>
+
+#include "link_step.h"
+#include "vec3.h"
+
+/// m/s, tangential slip below which a contact's friction directions are not aligned with it
+/// (its direction is then rounding noise): fixed directions instead.
+#define POOL_LINK_ALIGN_SLIP 1e-9
+
+/// Basic unknowns above which the warm start goes straight to Lemke rather than solve their
+/// system densely itself (k^3 / 3): a rack's cluster keeps about 150 basic.
+#define POOL_LINK_WARM_BASIC_MAX 256
+
+typedef enum link_kind { LINK_BALL = 0, LINK_CLOTH = 1, LINK_CUSHION = 2 } link_kind;
+
+/// One contact of the step: ball a (body 1) against ball b, the cloth or a cushion nose.
+typedef struct link_contact {
+	link_kind kind;
+	int a, b;         ///< ball indices; b = -1 for the cloth and the cushions
+	int rail;         ///< pool_rail of a cushion contact, else POOL_RAIL_NONE
+	pool_vec3 n;      ///< unit normal, towards ball a
+	pool_vec3 ra, rb; ///< from each centre to the contact point
+	double gap;       ///< m, distance between the surfaces (< 0: penetration)
+	double mu;        ///< friction of the pair
+} link_contact;
+
+/// A contact's place in a ball's incidence list: the contact and which side the ball is on.
+typedef struct link_incidence {
+	int contact;
+	int side; ///< 0: ball a, 1: ball b
+} link_incidence;
+
+/// Velocity of ball k's material point at offset r from its centre.
+static inline pool_vec3 point_velocity(const double *V, int k, pool_vec3 r) {
+	const double *v = V + 6 * k;
+	return pool_v3_add(pool_v3(v[0], v[1], v[2]), pool_v3_cross(pool_v3(v[3], v[4], v[5]), r));
+}
+
+/// Relative velocity at a contact: ball a's contact point minus the other body's.
+static inline pool_vec3 contact_velocity(const link_contact *c, const double *V) {
+	pool_vec3 u = point_velocity(V, c->a, c->ra);
+	if (c->b >= 0)
+		u = pool_v3_sub(u, point_velocity(V, c->b, c->rb));
+	return u;
+}
+
+typedef struct link_memory {
+	int *basis;            // L
+	int *basic;            // L: the warm start's basic unknowns
+	double *S;             // the warm start's k x k system and right-hand side, k <= POOL_LINK_WARM_BASIC_MAX
+	int *col_start;        // L + 1: the LCP matrix by columns (lemke.h), nonzeros only
+	int *col_row;          // nnz_max
+	double *col_val;       // nnz_max
+	int *near;             // nc: scratch, the contacts sharing a ball with one contact
+	double *q, *z;         // L
+	double *V;             // 6 n: free velocities, then the step's
+	double *G;             // nc x 2 x (1 + eta) x 6: generalized directions, per side
+	link_contact *contacts; // nc
+	link_incidence *inc;   // 2 nc
+	int *inc_start;        // n + 1
+	double *ball_push;     // n
+	int *ball_touching;    // n
+	double *tail;          // 6 n: end-of-step velocity less the mean (half the cloth wrenches)
+	double *V_free;        // 6 n: the free velocities, kept to measure the contacts' effect
+	void *lemke;
+} link_memory;
+
+/// What the building blocks of a step share.
+typedef struct link_problem {
+	link_memory m;
+	const link_contact *c;
+	int n, nc, eta, dirs, L;
+	double inv[6]; ///< M^-1 of a ball: 1/m three times, 1/I three times
+	double stick_slip; ///< m/s, cloth slip the step's cloth friction surely stops (build_directions)
+	int aligned;       ///< the friction directions lie along the slips (build_directions)
+} link_problem;
+
+/// Contact i's side of ball a (side 0) or b (side 1): its dirs generalized directions, 6 each.
+static inline double *directions(const link_problem *P, int i, int side) {
+	return P->m.G + ((size_t)i * 2 + (size_t)side) * (size_t)P->dirs * 6;
+}
+
+/// Index in x of contact i's direction j (0 the normal, 1 ... eta friction): friction first,
+/// then the normals, then the lambdas, as PHYSICS.md orders them.
+static inline size_t row_of(const link_problem *P, int i, int j) {
+	return (size_t)(j == 0 ? P->nc * P->eta + i : i * P->eta + j - 1);
+}
+static inline size_t lambda_of(const link_problem *P, int i) { return (size_t)(P->nc * (P->eta + 1) + i); }
+
+/// Unknown r of the LCP: its contact, and its direction (0 the normal, 1 ... eta friction, -1
+/// the contact's lambda); the inverse of row_of and lambda_of.
+static inline void unknown_of(const link_problem *P, int r, int *contact, int *dir) {
+	const int friction = P->nc * P->eta, impulses = friction + P->nc;
+	if (r < friction) {
+		*contact = r / P->eta;
+		*dir = 1 + r % P->eta;
+	} else if (r < impulses) {
+		*contact = r - friction;
+		*dir = 0;
+	} else {
+		*contact = r - impulses;
+		*dir = -1;
+	}
+}
+
+/// m/s, the tangential slip above which contact c's first friction direction lies along it.
+static inline double align_slip_of(const link_problem *P, const link_contact *c) {
+	return c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;
+}
+
+/// W entry between contact i1's direction j1 and contact i2's direction j2: J' M^-1 J over the
+/// balls they share, in the LCP's velocity units (times the mass).
+double pool_link_coupling(const link_problem *P, int i1, int j1, int i2, int j2, double mass);
+
+/// Sets P->m.basis from each contact's kept basis (link_basis.h), a guess for a contact no step
+/// has solved yet.
+void pool_link_recall_bases(link_problem *P, const pool_ball_state *s, const pool_link_bases *bases);
+
+/// Keeps each contact's part of the solved basis P->m.basis for the next step.
+void pool_link_store_bases(const link_problem *P, const pool_ball_state *s, pool_link_bases *bases,
+                           const pool_allocator *alloc);
+
+/// Solves the step from the basis P->m.basis without the matrix (link_warm.c says how); 1 with
+/// P->m.z (velocity units) and *residual when that basis solves it.
+int pool_link_solve_from_basis(link_problem *P, double mass, double *residual);
+
+#endif
