@@ -479,9 +479,18 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	for (int k = 0; k < m; ++k)
 		leaving += sim->body[idx[k]].loose;
 	cl->quiet = leaving == m;
-	cl->t_next = still && leaving == 0 ? INFINITY : t + this_dt;
+	// A cluster whose balls are all still and all held sleeps until something hits it: its
+	// balls are then at rest (slower than POOL_LINK_REST_SPEED, they would otherwise creep on
+	// for ever without another step: a ball held to a rail at 1e-7 m/s, the soak's rail_drift).
+	const int sleeps = still && leaving == 0;
+	cl->t_next = sleeps ? INFINITY : t + this_dt;
 	cl->dt = next_step_length(this_dt, st.max_contact_accel);
 	for (int k = 0; k < m; ++k) {
+		if (sleeps) {
+			s[k].vel = s[k].omega = pool_v3(0.0, 0.0, 0.0);
+			for (int e = 0; e < 6; ++e)
+				sim->link_ws.ball_tail[6 * k + e] = 0.0;
+		}
 		memcpy(sim->body[idx[k]].tail, sim->link_ws.ball_tail + 6 * k, sizeof sim->body[idx[k]].tail);
 		s[k].motion = POOL_MOTION_LINKED;
 		// The LCP's rounding (down to 1e-36 m/s) is no motion: a linked ball drifting at it

@@ -279,6 +279,35 @@ static void test_touching_ball_left_out(void **state) {
 	pool_sim_destroy(sim);
 }
 
+// A shot that stops at rest has every ball at rest: a cluster whose balls are all still sleeps
+// only with zero velocities. The soak's rail_drift shot 13563 (seed 7): a ball held to the
+// south rail by its spin, touched by a second; the cluster fell asleep with the first still
+// creeping at 1e-7 m/s, and 10,000 s later it had moved 1.1 mm into the other.
+static void test_sleeping_cluster_at_rest(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.table.cushion_height = 0.03629;
+	def.max_time = 60.0;
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state b0 = ball(0, 2.2376503299590795, 0.027513802925192888, def.params.ball_radius);
+	b0.vel = pool_v3(0.0, -6.537705060306724e-10, 0.0);
+	b0.omega = pool_v3(0.79247333533778819, 0.0, 0.0);
+	pool_ball_state b1 = ball(1, 2.1881569777228611, 0.056088803161870461, def.params.ball_radius);
+	b1.vel = pool_v3(4.6731676172254593e-08, 1.1451485413633153e-07, 0.0);
+	add_ball(sim, &b0);
+	add_ball(sim, &b1);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("sleeping cluster", &r, 0.0, 0.0);
+	assert_true(r.link_begin >= 1);
+	assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_REST);
+	const pool_ball_state *final = pool_sim_balls(sim);
+	for (int k = 0; k < 2; ++k)
+		if (!(pool_v3_len(final[k].vel) == 0.0 && pool_v3_len(final[k].omega) == 0.0))
+			fail_msg("ball %d ends %s at v = (%g, %g) m/s", k, pool_motion_name(final[k].motion), final[k].vel.x,
+			         final[k].vel.y);
+	pool_sim_destroy(sim);
+}
+
 static void test_pinned_to_rail_closed_form(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
@@ -417,7 +446,7 @@ static void test_deterministic(void **state) {
 int main(void) {
 	const struct CMUnitTest tests[] = {
 	    cmocka_unit_test(test_pushed_pair_closed_form), cmocka_unit_test(test_touching_ball_left_out),
-	    cmocka_unit_test(test_pinned_to_rail_closed_form),
+	    cmocka_unit_test(test_pinned_to_rail_closed_form), cmocka_unit_test(test_sleeping_cluster_at_rest),
 	    cmocka_unit_test(test_ball_on_two),             cmocka_unit_test(test_landing_on_a_ball),
 	    cmocka_unit_test(test_follow_into_a_line),      cmocka_unit_test(test_low_restitution_line),
 	    cmocka_unit_test(test_deterministic),
