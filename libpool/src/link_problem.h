@@ -50,10 +50,18 @@ static inline pool_vec3 contact_velocity(const link_contact *c, const double *V)
 	return u;
 }
 
+/// A basic unknown of the warm start (link_warm.c): its contact and direction (unknown_of), and
+/// for an impulse its M^-1 J column per side, times the mass (the LCP's velocity units).
+typedef struct link_warm_unknown {
+	int contact, dir;
+	double h[2][6];
+} link_warm_unknown;
+
 typedef struct link_memory {
 	int *basis;            // L
 	int *basic;            // L: the warm start's basic unknowns
 	double *S;             // the warm start's k x k system and right-hand side, k <= POOL_LINK_WARM_BASIC_MAX
+	link_warm_unknown *warm; // the warm start's k basic unknowns, decoded
 	int *col_start;        // L + 1: the LCP matrix by columns (lemke.h), nonzeros only
 	int *col_row;          // nnz_max
 	double *col_val;       // nnz_max

@@ -225,6 +225,7 @@ static size_t layout(void *base, int n, int nc, int eta, size_t nnz_max, link_me
 	LINK_PLACE(basis, int, L);
 	LINK_PLACE(basic, int, L);
 	LINK_PLACE(S, double, warm * (warm + 1));
+	LINK_PLACE(warm, link_warm_unknown, warm);
 	LINK_PLACE(col_start, int, L + 1);
 	LINK_PLACE(col_row, int, nnz_max);
 	LINK_PLACE(col_val, double, nnz_max);

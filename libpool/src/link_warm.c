@@ -20,18 +20,39 @@ static pool_link_contact_id contact_id(const link_contact *c, const pool_ball_st
 }
 
 
-/// Entry (r, c) of the LCP matrix as build_matrix makes it (without a compliance), computed on
-/// its own: J' M^-1 J (times the mass) over the balls the two contacts share, 1 (E), -1 (-E')
-/// and mu inside a contact, 0 elsewhere.
-static double matrix_entry(const link_problem *P, int r, int c, double mass) {
-	int ir, jr, ic, jc;
-	unknown_of(P, r, &ir, &jr);
-	unknown_of(P, c, &ic, &jc);
-	if (jr < 0) // a lambda row: mu fn - E' beta of its own contact
-		return ir != ic || jc < 0 ? 0.0 : jc == 0 ? P->c[ir].mu : -1.0;
-	if (jc < 0) // the lambda column: E on its contact's friction rows
-		return ir == ic && jr > 0 ? 1.0 : 0.0;
-	return pool_link_coupling(P, ir, jr, ic, jc, mass);
+/// The basic unknowns B[0..k) decoded into u (once: the k x k system reads each k times).
+static void decode_unknowns(const link_problem *P, const int *B, int k, double mass, link_warm_unknown *u) {
+	for (int p = 0; p < k; ++p) {
+		unknown_of(P, B[p], &u[p].contact, &u[p].dir);
+		if (u[p].dir < 0)
+			continue;
+		const link_contact *c = &P->c[u[p].contact];
+		for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
+			const double *g = directions(P, u[p].contact, side) + 6 * u[p].dir;
+			for (int e = 0; e < 6; ++e)
+				u[p].h[side][e] = P->inv[e] * g[e] * mass;
+		}
+	}
+}
+
+/// Entry (r, c) of the LCP matrix as build_matrix makes it (without a compliance), for two
+/// decoded unknowns: J' M^-1 J (times the mass) over the balls the two contacts share, 1 (E),
+/// -1 (-E') and mu inside a contact, 0 elsewhere.
+static double matrix_entry(const link_problem *P, const link_warm_unknown *r, const link_warm_unknown *c) {
+	if (r->dir < 0) // a lambda row: mu fn - E' beta of its own contact
+		return r->contact != c->contact || c->dir < 0 ? 0.0 : c->dir == 0 ? P->c[r->contact].mu : -1.0;
+	if (c->dir < 0) // the lambda column: E on its contact's friction rows
+		return r->contact == c->contact && r->dir > 0 ? 1.0 : 0.0;
+	const link_contact *cr = &P->c[r->contact], *cc = &P->c[c->contact];
+	double w = 0.0;
+	for (int sr = 0; sr < (cr->b >= 0 ? 2 : 1); ++sr)
+		for (int sc = 0; sc < (cc->b >= 0 ? 2 : 1); ++sc) {
+			if ((sr ? cr->b : cr->a) != (sc ? cc->b : cc->a))
+				continue;
+			const double *g = directions(P, r->contact, sr) + 6 * r->dir, *h = c->h[sc];
+			w += g[0] * h[0] + g[1] * h[1] + g[2] * h[2] + g[3] * h[3] + g[4] * h[4] + g[5] * h[5];
+		}
+	return w;
 }
 
 /// Solves the k x k system S y = b in place (Gaussian elimination, partial pivoting; y in b).
@@ -43,7 +64,7 @@ static int solve_dense(double *S, double *b, int k) {
 		double big = 0.0, colmax = 0.0;
 		for (int r = 0; r < k; ++r) {
 			const double e = fabs(S[r * k + c]);
-			colmax = fmax(colmax, e);
+			colmax = e > colmax ? e : colmax;
 			if (r >= c && e > big)
 				big = e, best = r;
 		}
@@ -146,10 +167,12 @@ int pool_link_solve_from_basis(link_problem *P, double mass, double *residual) {
 			B[k++] = j;
 	if (k > POOL_LINK_WARM_BASIC_MAX)
 		return 0;
+	link_warm_unknown *u = P->m.warm;
+	decode_unknowns(P, B, k, mass, u);
 	double *S = P->m.S, *y = P->m.S + (size_t)k * (size_t)k;
 	for (int p = 0; p < k; ++p) {
 		for (int t = 0; t < k; ++t)
-			S[p * k + t] = matrix_entry(P, B[p], B[t], mass);
+			S[p * k + t] = matrix_entry(P, &u[p], &u[t]);
 		y[p] = -P->m.q[B[p]];
 	}
 	if (solve_dense(S, y, k))
@@ -165,16 +188,13 @@ int pool_link_solve_from_basis(link_problem *P, double mass, double *residual) {
 	for (int e = 0; e < 6 * P->n; ++e)
 		dV[e] = 0.0;
 	for (int p = 0; p < k; ++p) {
-		int i, j;
-		unknown_of(P, B[p], &i, &j);
-		if (j < 0 || z[B[p]] == 0.0)
+		if (u[p].dir < 0 || z[B[p]] == 0.0)
 			continue;
-		const link_contact *c = &P->c[i];
+		const link_contact *c = &P->c[u[p].contact];
 		for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
-			const double *g = directions(P, i, side) + 6 * j;
 			double *d = dV + 6 * (side ? c->b : c->a);
 			for (int e = 0; e < 6; ++e)
-				d[e] += mass * z[B[p]] * P->inv[e] * g[e];
+				d[e] += z[B[p]] * u[p].h[side][e];
 		}
 	}
 	double worst = 0.0, qmax = 0.0;
@@ -192,8 +212,9 @@ int pool_link_solve_from_basis(link_problem *P, double mass, double *residual) {
 				w += z[lambda_of(P, i)];
 				friction += z[r];
 			}
-			worst = fmax(worst, fmax(-w, fmin(z[r], w)));
-			qmax = fmax(qmax, fabs(P->m.q[r]));
+			const double term = -w > (z[r] < w ? z[r] : w) ? -w : (z[r] < w ? z[r] : w);
+			worst = term > worst || term != term ? term : worst; // (NaN sticks)
+			qmax = fabs(P->m.q[r]) > qmax ? fabs(P->m.q[r]) : qmax;
 		}
 		const size_t l = lambda_of(P, i);
 		const double w = c->mu * z[row_of(P, i, 0)] - friction;
