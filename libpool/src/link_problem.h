@@ -122,10 +122,6 @@ static inline double align_slip_of(const link_problem *P, const link_contact *c)
 	return c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;
 }
 
-/// W entry between contact i1's direction j1 and contact i2's direction j2: J' M^-1 J over the
-/// balls they share, in the LCP's velocity units (times the mass).
-double pool_link_coupling(const link_problem *P, int i1, int j1, int i2, int j2, double mass);
-
 /// Sets P->m.basis from each contact's kept basis (link_basis.h), a guess for a contact no step
 /// has solved yet.
 void pool_link_recall_bases(link_problem *P, const pool_ball_state *s, const pool_link_bases *bases);

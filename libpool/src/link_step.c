@@ -209,7 +209,7 @@ static void tangent_basis(pool_vec3 n, pool_vec3 slip, int align, double align_s
 static size_t align_up(size_t x) { return (x + 15u) & ~(size_t)15u; }
 
 /// Lays out the step's arrays in `base` (NULL: only sizes them); returns the bytes needed.
-/// nnz_max bounds the LCP matrix's nonzeros (matrix_capacity).
+/// nnz_max bounds the LCP matrix's nonzeros (matrix_nonzeros).
 static size_t layout(void *base, int n, int nc, int eta, size_t nnz_max, link_memory *m) {
 	const size_t L = (size_t)nc * (size_t)(eta + 2);
 	const size_t warm = L < POOL_LINK_WARM_BASIC_MAX ? L : POOL_LINK_WARM_BASIC_MAX;
@@ -453,22 +453,6 @@ static size_t matrix_nonzeros(const link_problem *P) {
 	for (int i = 0; i < P->nc; ++i)
 		nnz += (size_t)P->dirs * ((size_t)near_contacts(P, i) * (size_t)P->dirs + 1) + (size_t)P->eta;
 	return nnz;
-}
-
-/// W entry between contact i1's direction j1 and contact i2's direction j2, J' M^-1 J over the
-/// balls they share, in velocity units (times the mass; scale below).
-double pool_link_coupling(const link_problem *P, int i1, int j1, int i2, int j2, double mass) {
-	const link_contact *c1 = &P->c[i1], *c2 = &P->c[i2];
-	double w = 0.0;
-	for (int s1 = 0; s1 < (c1->b >= 0 ? 2 : 1); ++s1)
-		for (int s2 = 0; s2 < (c2->b >= 0 ? 2 : 1); ++s2) {
-			if ((s1 ? c1->b : c1->a) != (s2 ? c2->b : c2->a))
-				continue;
-			const double *a = directions(P, i1, s1) + 6 * j1, *b = directions(P, i2, s2) + 6 * j2;
-			for (int e = 0; e < 6; ++e)
-				w += a[e] * P->inv[e] * b[e];
-		}
-	return w * mass;
 }
 
 /// The LCP matrix by columns (lemke.h's compressed columns, rows ascending, nonzeros only): J'

@@ -19,7 +19,6 @@ static pool_link_contact_id contact_id(const link_contact *c, const pool_ball_st
 	return id;
 }
 
-
 /// The basic unknowns B[0..k) decoded into u (once: the k x k system reads each k times).
 static void decode_unknowns(const link_problem *P, const int *B, int k, double mass, link_warm_unknown *u) {
 	for (int p = 0; p < k; ++p) {
