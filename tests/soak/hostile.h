@@ -190,6 +190,7 @@ typedef struct hs_shot {
 	int cue;                                    // index of the struck ball
 	double speed, phi_deg, theta_deg, a, b;     // strike as written to the scenario file
 	pool_strike strike;                         // the same in radians
+	const char *origin;                         // how to reproduce a shot hs_make did not make (NULL: soak's)
 } hs_shot;
 
 static inline double hs_dc(const pool_sim_def *def) {
@@ -1265,9 +1266,13 @@ static inline const char *hs_stop_name(pool_stop_reason r) {
 }
 
 static inline void hs_print_report(FILE *f, const hs_shot *s, const hs_report *rep) {
-	fprintf(f, "FAIL shot seed=%llu index=%ld class=%s (%d balls, %d events, stop %s); reproduce: soak --seed %llu --shot %ld --class %s\n",
-	        (unsigned long long)s->seed, s->index, hs_class_names[s->cls], s->n, rep->events, hs_stop_name(rep->stop),
-	        (unsigned long long)s->seed, s->index, hs_class_names[s->cls]);
+	if (s->origin)
+		fprintf(f, "FAIL shot index=%ld class=%s (%d balls, %d events, stop %s); reproduce: %s\n", s->index,
+		        hs_class_names[s->cls], s->n, rep->events, hs_stop_name(rep->stop), s->origin);
+	else
+		fprintf(f, "FAIL shot seed=%llu index=%ld class=%s (%d balls, %d events, stop %s); reproduce: soak --seed %llu --shot %ld --class %s\n",
+		        (unsigned long long)s->seed, s->index, hs_class_names[s->cls], s->n, rep->events, hs_stop_name(rep->stop),
+		        (unsigned long long)s->seed, s->index, hs_class_names[s->cls]);
 	for (int c = 0; c < HS_CK_COUNT; ++c)
 		if (rep->mask & (1u << c))
 			fprintf(f, "  %s: %s\n", hs_check_names[c], rep->msg[c]);

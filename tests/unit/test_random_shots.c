@@ -237,6 +237,8 @@ static void test_random_shots(void **state) {
 			memset(&h, 0, sizeof h);
 			h.cls = HS_LAYOUT;
 			h.index = k;
+			// (test_random_shots' own layouts, not the soak's: its hint would name another shot)
+			h.origin = "pool-sim on the scenario below (a test_random_shots layout shot)";
 			h.def = def;
 			h.n = s.n;
 			pool_ball_state initial[16];
