@@ -117,6 +117,47 @@ static inline void unknown_of(const link_problem *P, int r, int *contact, int *d
 	}
 }
 
+/// M^-1 times contact i's generalized direction j, per side, times the mass (the LCP's velocity
+/// units): an impulse unknown's column before a row's J' meets it (coupling).
+static inline void impulse_column(const link_problem *P, int i, int j, double mass, double h[2][6]) {
+	const link_contact *c = &P->c[i];
+	for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
+		const double *g = directions(P, i, side) + 6 * j;
+		for (int e = 0; e < 6; ++e)
+			h[side][e] = P->inv[e] * g[e] * mass;
+	}
+}
+
+/// The sides through which contacts i1 and i2 share a ball: none, one, or two (a contact with
+/// itself, between two balls).
+typedef struct link_shared {
+	int count;
+	int s1[2], s2[2];
+} link_shared;
+
+static inline link_shared shared_sides(const link_problem *P, int i1, int i2) {
+	const link_contact *c1 = &P->c[i1], *c2 = &P->c[i2];
+	link_shared sh = {0, {0, 0}, {0, 0}};
+	for (int s1 = 0; s1 < (c1->b >= 0 ? 2 : 1); ++s1)
+		for (int s2 = 0; s2 < (c2->b >= 0 ? 2 : 1); ++s2)
+			if ((s1 ? c1->b : c1->a) == (s2 ? c2->b : c2->a)) {
+				sh.s1[sh.count] = s1;
+				sh.s2[sh.count++] = s2;
+			}
+	return sh;
+}
+
+/// The LCP matrix's entry between the impulse row of contact i1's direction j1 and an impulse
+/// column h (impulse_column) of a contact sharing sh with it: J' M^-1 J over the shared balls.
+static inline double coupling(const link_problem *P, int i1, int j1, const link_shared *sh, const double h[2][6]) {
+	double w = 0.0;
+	for (int q = 0; q < sh->count; ++q) {
+		const double *a = directions(P, i1, sh->s1[q]) + 6 * j1, *b = h[sh->s2[q]];
+		w += a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
+	}
+	return w;
+}
+
 /// m/s, the tangential slip above which contact c's first friction direction lies along it.
 static inline double align_slip_of(const link_problem *P, const link_contact *c) {
 	return c->kind == LINK_CLOTH ? fmax(POOL_LINK_ALIGN_SLIP, P->stick_slip) : POOL_LINK_ALIGN_SLIP;

@@ -470,6 +470,7 @@ static void build_matrix(link_problem *P, double mass, double compliance) {
 	size_t t = 0;
 #define LINK_PUT(r, v)                                                                                                 	do {                                                                                                           		const double value_ = (v);                                                                             		if (value_ != 0.0) {                                                                                   			row[t] = (int)(r);                                                                             			val[t++] = value_;                                                                             		}                                                                                                      	} while (0)
 	// Columns in unknown order: the friction directions of every contact, its normals, its lambdas.
+	int near_of = -1, near = 0;
 	for (int col = 0; col < P->L; ++col) {
 		start[col] = (int)t;
 		int i2, j2;
@@ -479,32 +480,18 @@ static void build_matrix(link_problem *P, double mass, double compliance) {
 				LINK_PUT(row_of(P, i2, j), 1.0);
 			continue;
 		}
-		// M^-1 times the column's generalized direction, per side of its contact.
-		const link_contact *c2 = &P->c[i2];
 		double h[2][6];
-		for (int side = 0; side < (c2->b >= 0 ? 2 : 1); ++side) {
-			const double *g = directions(P, i2, side) + 6 * j2;
-			for (int e = 0; e < 6; ++e)
-				h[side][e] = P->inv[e] * g[e] * mass;
+		impulse_column(P, i2, j2, mass, h);
+		if (i2 != near_of) { // (a contact's columns are consecutive: its neighbours once)
+			near = near_contacts(P, i2);
+			near_of = i2;
 		}
-		const int near = near_contacts(P, i2);
 		for (int pass = 0; pass < 2; ++pass) // the friction rows, then the normal rows
 			for (int k = 0; k < near; ++k) {
 				const int i1 = P->m.near[k];
-				const link_contact *c1 = &P->c[i1];
-				int pairs = 0, s1_of[2], s2_of[2]; // the sides through which the two contacts share a ball
-				for (int s1 = 0; s1 < (c1->b >= 0 ? 2 : 1); ++s1)
-					for (int s2 = 0; s2 < (c2->b >= 0 ? 2 : 1); ++s2)
-						if ((s1 ? c1->b : c1->a) == (s2 ? c2->b : c2->a)) {
-							s1_of[pairs] = s1;
-							s2_of[pairs++] = s2;
-						}
+				const link_shared sh = shared_sides(P, i1, i2);
 				for (int j1 = pass ? 0 : 1; j1 < (pass ? 1 : P->dirs); ++j1) {
-					double w = 0.0;
-					for (int q = 0; q < pairs; ++q) {
-						const double *a = directions(P, i1, s1_of[q]) + 6 * j1, *b = h[s2_of[q]];
-						w += a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
-					}
+					const double w = coupling(P, i1, j1, &sh, h);
 					LINK_PUT(row_of(P, i1, j1), i1 == i2 && j1 == j2 ? w + compliance : w);
 				}
 			}
@@ -569,7 +556,6 @@ static void apply_impulses(link_problem *P) {
 		}
 	}
 }
-
 
 pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int n, double dt,
                                 const pool_link_options *options, pool_link_workspace *ws,
