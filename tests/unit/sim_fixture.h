@@ -19,4 +19,14 @@ static inline void add_ball(pool_sim *sim, const pool_ball_state *b) {
 		fail_msg("add ball %d: %s", (int)b->id, err.message);
 }
 
+/// Index in s[0..n) of the ball with this id (an event's ball among a shot's); fails the test
+/// when there is none.
+static inline int ball_index(const pool_ball_state *s, int n, int32_t id) {
+	for (int i = 0; i < n; ++i)
+		if (s[i].id == id)
+			return i;
+	fail_msg("no ball with id %d", (int)id);
+	return -1;
+}
+
 #endif

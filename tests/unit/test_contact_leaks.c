@@ -93,10 +93,7 @@ static leak_report run_and_check(pool_sim *sim, const pool_sim_def *def) {
 		double before_e = 0.0, after_e = 0.0;
 		int unchanged = ev[e].type == POOL_EVENT_BALL_BALL;
 		for (int k = 0; k < ev[e].ball_count; ++k) {
-			int i = 0;
-			while (i < nb && start[i].id != after[k].id)
-				++i;
-			assert_true(i < nb);
+			const int i = ball_index(start, nb, after[k].id);
 			pool_ball_state before;
 			pool_motion_evolve(p, &seg[i], ev[e].time - t0[i], &before);
 			before_e += pool_motion_energy(p, &before);

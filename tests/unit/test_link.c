@@ -123,10 +123,7 @@ static scene_report run_scene(pool_sim *sim, const pool_sim_def *def) {
 	for (int k = 0; k < count; ++k) {
 		const pool_ball_state *after = pool_sim_event_states(sim, &ev[k]);
 		for (int b = 0; b < ev[k].ball_count; ++b) {
-			int i = 0;
-			while (i < n && last[i].id != after[b].id)
-				++i;
-			assert_true(i < n);
+			const int i = ball_index(last, n, after[b].id);
 			pool_ball_state expected;
 			pool_motion_evolve(&def->params, &last[i], ev[k].time - t_last[i], &expected);
 			r.jump = fmax(r.jump, pool_v3_len(pool_v3_sub(expected.pos, after[b].pos)));

@@ -15,6 +15,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #include "ball_friction.h"
 #include "cushion_mathavan.h"
 #include "models.h"
@@ -525,9 +527,7 @@ static void test_random_shots_all_models(void **state) {
 			pool_vec3 p_before = {0, 0, 0}, p_after = {0, 0, 0};
 			double speeds = 0.0; // the momentum's scale: two balls meeting head on sum to ~0
 			for (int j = 0; j < ev[e].ball_count; ++j) {
-				int i = 0;
-				while (balls[i].id != after[j].id)
-					++i;
+				const int i = ball_index(balls, n, after[j].id);
 				pool_ball_state before;
 				if (ev[e].type == POOL_EVENT_STRIKE)
 					before = seg[i];

@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "sim_fixture.h"
+
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
@@ -156,9 +158,7 @@ static void check_shot(pool_sim *sim, const pool_sim_def *def, const shot *s, in
 		pool_vec3 p_before = {0, 0, 0}, p_after = {0, 0, 0};
 		double speeds = 0.0; // the momentum's scale: two balls meeting head on sum to ~0
 		for (int k = 0; k < ev[e].ball_count; ++k) {
-			int i = 0;
-			while (s->balls[i].id != after[k].id)
-				++i;
+			const int i = ball_index(s->balls, s->n, after[k].id);
 			pool_ball_state before;
 			if (ev[e].type == POOL_EVENT_STRIKE)
 				before = seg[i];
