@@ -114,6 +114,18 @@ double pool_contact_first_falling_root(const double *p, int deg, double T) {
 		--deg;
 	if (deg <= 2 && closed_form_safe(p, deg))
 		return first_falling_root_quadratic(p[0], deg >= 1 ? p[1] : 0.0, deg >= 2 ? p[2] : 0.0, T);
+	if (p[0] > 0.0 && isfinite(T)) {
+		// Apart by more than the other terms can take over the window (|p_k| T^k summed, with a
+		// margin for that sum's rounding): no root, without the quartic solver. Most pairs the
+		// schedule asks about over a short window (a linked ball's step) end here.
+		double reach = 0.0, power = 1.0;
+		for (int k = 1; k <= deg; ++k) {
+			power *= T;
+			reach += fabs(p[k]) * power;
+		}
+		if (reach * (1.0 + 1e-12) < p[0])
+			return INFINITY;
+	}
 	double c[5] = {0.0, 0.0, 0.0, 0.0, 0.0}; // the solver's order: highest degree first
 	for (int k = 0; k <= deg; ++k)
 		c[4 - k] = p[k];

@@ -67,6 +67,9 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	b->own_kind = kind;
 }
 
+// The earlier of two event times (never NaN): fmin is a library call, here in the hottest loop.
+static inline double earlier(double a, double b) { return b < a ? b : a; }
+
 // Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
 static void repredict(pool_sim *sim, int i, double now) {
 	const pool_params *p = &sim->def.params;
@@ -90,7 +93,7 @@ static void repredict(pool_sim *sim, int i, double now) {
 			if (bi->cluster >= 0 && bi->cluster == bj->cluster)
 				continue;
 			// A contact after the best event so far cannot be the earliest: shrink the window.
-			const double T = fmin(fmin(horizon_i, bj->own_time), best.time) - now;
+			const double T = earlier(earlier(horizon_i, bj->own_time), best.time) - now;
 			if (!(T >= 0.0))
 				continue;
 			pool_vec3 pj, vj;
