@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include <cmocka.h>
 
@@ -13,6 +14,7 @@
 #include "vec3.h"
 
 static const double R = 0.028575;
+static const double PI = 3.14159265358979323846;
 
 static void near_rel(double got, double want, double rel) {
 	if (!(fabs(got - want) <= rel * fmax(fabs(want), 1e-300)))
@@ -239,6 +241,85 @@ static void test_touching_pushed_together(void **state) {
 	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(1.0, 0, 0), da, R, 1.0)));
 }
 
+// Contacts at the edge of the window, where the cheap rejections (predict.c, contact.c) decide:
+// a head-on pair and a ball rolling to a rail whose contact times are closed forms, with windows
+// a part in 1e9 longer (the contact is found, at its time) and shorter (none).
+static void test_window_edges(void **state) {
+	(void)state;
+	const pool_vec3 zero = pool_v3(0, 0, 0);
+	const double d = 0.3, v = 0.8, a = 0.25; // the rear ball decelerates relative to the front one
+	const double hit = (v - sqrt(v * v - 2.0 * a * (d - 2.0 * R))) / a;
+	const pool_vec3 dirs[] = {pool_v3(1, 0, 0), pool_v3(sqrt(0.5), sqrt(0.5), 0), pool_v3(0.6, -0.8, 0)};
+	for (size_t k = 0; k < sizeof dirs / sizeof dirs[0]; ++k) {
+		const pool_vec3 n = dirs[k];
+		const pool_vec3 dp = pool_v3_scale(n, -d), dv = pool_v3_scale(n, v), da = pool_v3_scale(n, -0.5 * a);
+		near_rel(pool_predict_ball_ball(dp, dv, da, R, hit * (1.0 + 1e-9)), hit, 1e-12);
+		assert_true(isinf(pool_predict_ball_ball(dp, dv, da, R, hit * (1.0 - 1e-9))));
+		near_rel(pool_predict_ball_ball(dp, dv, zero, R, (d - 2.0 * R) / v * (1.0 + 1e-9)), (d - 2.0 * R) / v, 1e-12);
+	}
+	pool_table_def t = pool_default_table_def();
+	const double h = t.cushion_height, dc = sqrt(R * R - (h - R) * (h - R)), gap = 0.2;
+	pool_ball_state s = {0};
+	s.pos = pool_v3(1.0, dc + gap, R);
+	s.vel = pool_v3(0.1, -v, 0.0);
+	const pool_vec3 acc = pool_v3(0.0, a, 0.0); // slowing on its way to the south rail
+	const double to_rail = (v - sqrt(v * v - 2.0 * a * gap)) / a;
+	pool_rail rail;
+	pool_pocket pocket;
+	near_rel(pool_predict_cushion(&t, R, &s, acc, to_rail * (1.0 + 1e-9), &rail, &pocket), to_rail, 1e-12);
+	assert_int_equal(rail, POOL_RAIL_SOUTH);
+	assert_true(isinf(pool_predict_cushion(&t, R, &s, acc, to_rail * (1.0 - 1e-9), &rail, &pocket)));
+}
+
+// Random pairs on the cloth against sampling their distance: whenever the sampled path comes
+// within 2R (less a margin for the sampling), a contact is predicted inside the window, no later
+// than the first such sample; whenever it stays outside (plus the margin), none is. Windows from
+// a link step's millisecond to seconds, so every rejection's bound is exercised near its edge.
+static void test_random_pairs_against_sampling(void **state) {
+	(void)state;
+	uint64_t x = 0x2545F4914F6CDD1Dull;
+	int contacts = 0, misses = 0;
+	for (int k = 0; k < 10000; ++k) {
+		double u[7];
+		for (int e = 0; e < 7; ++e) {
+			x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+			u[e] = (double)(x >> 11) / 9007199254740992.0;
+		}
+		const double ang = 2.0 * PI * u[0], dist = 2.0 * R + 0.1 * u[1] * u[1];
+		const pool_vec3 dp = pool_v3(dist * cos(ang), dist * sin(ang), 0.0);
+		const double speed = 3.0 * u[2], heading = ang + PI + (u[3] - 0.5) * 1.2;
+		const pool_vec3 dv = pool_v3(speed * cos(heading), speed * sin(heading), 0.0);
+		const pool_vec3 da = pool_v3(2.0 * (u[4] - 0.5), 2.0 * (u[5] - 0.5), 0.0);
+		const double T = 1e-3 * pow(1e3, u[6]);
+		const double tau = pool_predict_ball_ball(dp, dv, da, R, T);
+		// the closest sample and the first one inside
+		const int samples = 4000;
+		double closest = INFINITY, first_inside = INFINITY;
+		for (int i = 0; i <= samples; ++i) {
+			const double t = T * i / samples;
+			const pool_vec3 p = pool_v3_add(pool_v3_add(dp, pool_v3_scale(dv, t)), pool_v3_scale(da, t * t));
+			const double gap = pool_v3_len(p) - 2.0 * R;
+			closest = fmin(closest, gap);
+			if (gap < 0.0 && !isfinite(first_inside))
+				first_inside = t;
+		}
+		// between samples the path moves at most (|dv| + 2 |da| T) T / samples
+		const double margin = (speed + 2.0 * pool_v3_len(da) * T) * T / samples + 1e-12;
+		if (closest < -margin) {
+			if (!(tau <= first_inside))
+				fail_msg("pair %d: the path enters 2R at %.9g s (window %.9g s), predicted %.9g", k, first_inside, T, tau);
+			++contacts;
+		} else if (closest > margin) {
+			if (isfinite(tau))
+				fail_msg("pair %d: the path stays %.3g m apart over %.9g s, predicted a contact at %.9g", k, closest, T,
+				         tau);
+			++misses;
+		}
+	}
+	printf("random pairs: %d contacts, %d misses checked\n", contacts, misses);
+	assert_true(contacts > 1000 && misses > 1000);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_linear_approach),
@@ -250,6 +331,8 @@ int main(void) {
 		cmocka_unit_test(test_cushion_slow_separation_pulled_back),
 		cmocka_unit_test(test_cushion_and_pockets),
 		cmocka_unit_test(test_cushion_touching_pushed_in),
+		cmocka_unit_test(test_window_edges),
+		cmocka_unit_test(test_random_pairs_against_sampling),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
