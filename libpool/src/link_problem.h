@@ -171,8 +171,9 @@ void pool_link_recall_bases(link_problem *P, const pool_ball_state *s, const poo
 void pool_link_store_bases(const link_problem *P, const pool_ball_state *s, pool_link_bases *bases,
                            const pool_allocator *alloc);
 
-/// Solves the step from the basis P->m.basis without the matrix (link_warm.c says how); 1 with
-/// P->m.z (velocity units) and *residual when that basis solves it.
+/// Solves the step from the basis P->m.basis, or a mend of it, without the matrix (link_warm.c
+/// says how); 1 with P->m.z (velocity units) and *residual when one solves it, else 0 with
+/// P->m.basis unchanged. Uses the matrix's column memory (col_start, col_row) as scratch.
 int pool_link_solve_from_basis(link_problem *P, double mass, double *residual);
 
 #endif

@@ -529,6 +529,62 @@ static void test_warm_start_by_contact(void **state) {
 	pool_link_workspace_free(&wb, &heap);
 }
 
+// A kept basis a contact has outgrown, mended before Lemke (link_warm.c mend_basis): the step is
+// still solved from the kept bases, without a pivot, and right by oracles that do not use the
+// LCP. Opening: a cue ball pushing an object ball with follow (the contact pressed) is sent
+// back; nothing then acts between the two, so each moves exactly as it would alone on the
+// cloth. Closing: two balls touching at equal speeds on a frictionless table (the contact
+// open), the rear one then faster: the step closes the contact inelastically, ending both at
+// the common speed that keeps their momentum.
+static void test_mended_warm_start(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	const double R = def.params.ball_radius, dt = 1e-3;
+	pool_link_options o = POOL_LINK_OPTIONS_DEFAULT;
+	pool_link_workspace ws = {0};
+	pool_ball_state s[2] = {ball(pool_v3(0.5, 0.3, R), pool_v3(0.8, 0, 0), pool_v3(0, 2.0 * 0.8 / R, 0)),
+	                        ball(pool_v3(0.5 + 2.0 * R, 0.3, R), pool_v3(0, 0, 0), pool_v3(0, 0, 0))};
+	s[1].id = 1;
+	pool_link_step_stats st;
+	for (int k = 0; k < 5; ++k)
+		step(&def, s, 2, dt, &o, &ws, &st);
+	assert_true(st.max_push > 0.0); // pressed
+	s[0].vel = pool_v3(-0.3, 0.05, 0.0);
+	s[0].omega = pool_v3(0.0, 0.0, 4.0);
+	pool_ball_state alone[2] = {s[0], s[1]};
+	step(&def, s, 2, dt, &o, &ws, &st);
+	for (int k = 0; k < 2; ++k) {
+		pool_link_workspace own = {0};
+		step(&def, &alone[k], 1, dt, &o, &own, NULL);
+		pool_link_workspace_free(&own, &heap);
+		const double dv = pool_v3_len(pool_v3_sub(s[k].vel, alone[k].vel)),
+		             dw = pool_v3_len(pool_v3_sub(s[k].omega, alone[k].omega)) * R;
+		if (!(dv < 1e-12 && dw < 1e-12))
+			fail_msg("ball %d sent back: |dv| %g, |dw| R %g m/s from its step alone", k, dv, dw);
+	}
+	print_message("opening: warm %d, %d pivots\n", st.warm, st.pivots);
+	assert_int_equal(st.warm, 1);
+	assert_int_equal(st.pivots, 0);
+	pool_link_workspace_free(&ws, &heap);
+
+	def.params.mu_slide = def.params.mu_roll = def.params.mu_spin = def.params.mu_ball = 0.0;
+	pool_link_workspace ws2 = {0};
+	pool_ball_state t[2] = {ball(pool_v3(0.5, 0.3, R), pool_v3(0.5, 0, 0), pool_v3(0, 0.5 / R, 0)),
+	                        ball(pool_v3(0.5 + 2.0 * R, 0.3, R), pool_v3(0.5, 0, 0), pool_v3(0, 0.5 / R, 0))};
+	t[1].id = 1;
+	for (int k = 0; k < 3; ++k)
+		step(&def, t, 2, dt, &o, &ws2, &st);
+	assert_true(st.max_push == 0.0); // open
+	t[0].vel.x = 0.7;
+	const double p0 = t[0].vel.x + t[1].vel.x;
+	step(&def, t, 2, dt, &o, &ws2, &st);
+	print_message("closing: warm %d, %d pivots, v %.15f %.15f m/s\n", st.warm, st.pivots, t[0].vel.x, t[1].vel.x);
+	assert_true(fabs(t[0].vel.x - 0.5 * p0) < 1e-12 && fabs(t[1].vel.x - 0.5 * p0) < 1e-12);
+	assert_int_equal(st.warm, 1);
+	assert_int_equal(st.pivots, 0);
+	pool_link_workspace_free(&ws2, &heap);
+}
+
 // ---- 5. errors
 
 static void test_out_of_memory(void **state) {
@@ -658,7 +714,7 @@ int main(void) {
 	    cmocka_unit_test(test_spin_into_rail),   cmocka_unit_test(test_follow_push),
 	    cmocka_unit_test(test_rack_push),        cmocka_unit_test(test_out_of_memory),    cmocka_unit_test(test_bad_input),
 	    cmocka_unit_test(test_contacts_and_stats), cmocka_unit_test(test_slow_draw_rolls),
-	    cmocka_unit_test(test_warm_start_by_contact),
+	    cmocka_unit_test(test_warm_start_by_contact), cmocka_unit_test(test_mended_warm_start),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
