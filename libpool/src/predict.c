@@ -70,6 +70,10 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 	const double dd = pool_v3_dot(dp, dp);
 	if (!(T >= 0.0))
 		return INFINITY;
+	// Apart (the hot path, no square root): most pairs are out of reach over the window.
+	const int apart = dd > touch * touch;
+	if (apart && !(T > 0.0 && may_touch(dp, dv, da, R, T)))
+		return INFINITY;
 	// f = |p|^2 - (2R)^2 with p(tau) = dp + dv tau + da tau^2.
 	const double pv = pool_v3_dot(dp, dv), vv = pool_v3_dot(dv, dv);
 	pool_contact_gap g;
@@ -78,8 +82,8 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 	g.f[2] = vv + 2.0 * pool_v3_dot(da, dp);
 	g.f[3] = 2.0 * pool_v3_dot(da, dv);
 	g.f[4] = pool_v3_dot(da, da);
-	if (dd > touch * touch) // apart: the hot path, no square root
-		return T > 0.0 && may_touch(dp, dv, da, R, T) ? pool_contact_first_falling_root(g.f, 4, T) : INFINITY;
+	if (apart)
+		return pool_contact_first_falling_root(g.f, 4, T);
 	const double dist = sqrt(dd);
 	if (!(dist > 0.0))
 		return INFINITY; // coincident centres have no normal (placement refuses them)
