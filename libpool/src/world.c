@@ -371,6 +371,19 @@ static pool_result note_collision(pool_sim *sim, pool_event_type type, const int
 	return POOL_OK;
 }
 
+/// m/s: a pair whose centres separate faster than this after a collision parts (world.c: the
+/// hitter of a cluster's ball then stays out of the cluster). The contact rule's own threshold
+/// for a pair closing (contact.h), so a pair that does not part is one the rule would see
+/// touching or closing.
+#define POOL_PARTING_SPEED POOL_APPROACH_EPS
+
+// The two balls of s[0..1] (just after their collision) separate faster than POOL_PARTING_SPEED.
+static int parting(const pool_ball_state *s) {
+	const pool_vec3 d = pool_v3_sub(s[1].pos, s[0].pos);
+	const double dist = pool_v3_len(d);
+	return dist > 0.0 && pool_v3_dot(d, pool_v3_sub(s[1].vel, s[0].vel)) / dist > POOL_PARTING_SPEED;
+}
+
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.
 static pool_result process(pool_sim *sim, int slot) {
 	const pool_event_key key = sim->keys[slot];
@@ -450,11 +463,15 @@ static pool_result process(pool_sim *sim, int slot) {
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
-	// A ball that hit a cluster's ball joins the cluster: if the cluster presses it, the next
-	// step holds it (rather than impulses at one instant, each after a whole step's forces);
-	// if not, the step finds it loose and it leaves.
+	// A ball that hit a cluster's ball and does not part from it joins the cluster: if the
+	// cluster presses it, the next step holds it (rather than impulses at one instant, each
+	// after a whole step's forces); if not, the step finds it loose and it leaves. One that
+	// parts (Petit's law sends it off at e times its approach) stays out: the cluster's next
+	// step would only find it loose, at the price of an LCP with all its contacts (a break's
+	// balls running into a cluster in the rack: 8 balls, 21 contacts), and should the cluster
+	// catch it again, the trigger links the pair.
 	if (type == POOL_EVENT_BALL_BALL && sim->body[inv[0]].active && sim->body[inv[1]].active &&
-	    (sim->body[inv[0]].cluster >= 0) != (sim->body[inv[1]].cluster >= 0)) {
+	    (sim->body[inv[0]].cluster >= 0) != (sim->body[inv[1]].cluster >= 0) && !parting(s)) {
 		const int member = sim->body[inv[0]].cluster >= 0 ? 0 : 1;
 		pool_link_adopt(sim, inv[1 - member], sim->body[inv[member]].cluster, now);
 	}

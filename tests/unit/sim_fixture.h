@@ -19,14 +19,21 @@ static inline void add_ball(pool_sim *sim, const pool_ball_state *b) {
 		fail_msg("add ball %d: %s", (int)b->id, err.message);
 }
 
-/// Index in s[0..n) of the ball with this id (an event's ball among a shot's); fails the test
-/// when there is none.
-static inline int ball_index(const pool_ball_state *s, int n, int32_t id) {
+/// Index in s[0..n) of the ball with this id (an event's ball among a shot's), -1 when there is
+/// none.
+static inline int find_ball(const pool_ball_state *s, int n, int32_t id) {
 	for (int i = 0; i < n; ++i)
 		if (s[i].id == id)
 			return i;
-	fail_msg("no ball with id %d", (int)id);
 	return -1;
+}
+
+/// find_ball for a ball that must be there: fails the test when there is none.
+static inline int ball_index(const pool_ball_state *s, int n, int32_t id) {
+	const int i = find_ball(s, n, id);
+	if (i < 0)
+		fail_msg("no ball with id %d", (int)id);
+	return i;
 }
 
 #endif

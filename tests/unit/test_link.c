@@ -440,13 +440,58 @@ static void test_deterministic(void **state) {
 		pool_sim_destroy(sims[k]);
 }
 
+// The pushed pair, and a third ball running into the object ball from the side at 3 m/s while
+// the pair is linked: it parts at once (Petit's law), so it never joins the cluster (no LINK
+// event has it), and its collision keeps the momentum of the two balls it is between.
+static void test_hitter_stays_out(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.params.mu_ball = 0.0;
+	const double R = def.params.ball_radius, v = 0.5;
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
+	pool_ball_state hitter = ball(2, 0.6 + 2.0 * R + 0.05, 0.635 + 0.3, R);
+	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
+	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
+	hitter.vel = pool_v3(0.0, -3.0, 0.0);
+	hitter.omega = pool_v3(-3.0 / R, 0.0, 0.0); // rolling
+	add_ball(sim, &cue);
+	add_ball(sim, &obj);
+	add_ball(sim, &hitter);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("hitter stays out", &r, 0.0, 0.0);
+	int count = 0, hits = 0;
+	const pool_event *ev = pool_sim_events(sim, &count);
+	for (int k = 0; k < count; ++k) {
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[k]);
+		const int h = find_ball(after, ev[k].ball_count, 2);
+		if (h < 0)
+			continue;
+		if (ev[k].type == POOL_EVENT_LINK_BEGIN || ev[k].type == POOL_EVENT_LINK_STEP || ev[k].type == POOL_EVENT_LINK_END)
+			fail_msg("the hitter is in %s at %.6f s", pool_event_type_name(ev[k].type), ev[k].time);
+		if (ev[k].type != POOL_EVENT_BALL_BALL || find_ball(after, ev[k].ball_count, 1) < 0)
+			continue;
+		// the object ball's state just before: the state the world had for it at that time
+		pool_ball_state before[3];
+		assert_int_equal(pool_sim_state_at(sim, nextafter(ev[k].time, 0.0), before), POOL_OK);
+		const int o = ball_index(after, ev[k].ball_count, 1);
+		assert_int_equal(after[o].motion, POOL_MOTION_LINKED); // hit inside the cluster
+		const pool_vec3 p0 = pool_v3_add(before[1].vel, before[2].vel), p1 = pool_v3_add(after[o].vel, after[h].vel);
+		assert_true(pool_v3_len(pool_v3_sub(p0, p1)) < 1e-12);
+		++hits;
+	}
+	assert_true(hits == 1);
+	assert_true(r.link_begin >= 1);
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 	    cmocka_unit_test(test_pushed_pair_closed_form), cmocka_unit_test(test_touching_ball_left_out),
 	    cmocka_unit_test(test_pinned_to_rail_closed_form), cmocka_unit_test(test_sleeping_cluster_at_rest),
 	    cmocka_unit_test(test_ball_on_two),             cmocka_unit_test(test_landing_on_a_ball),
 	    cmocka_unit_test(test_follow_into_a_line),      cmocka_unit_test(test_low_restitution_line),
-	    cmocka_unit_test(test_deterministic),
+	    cmocka_unit_test(test_deterministic),             cmocka_unit_test(test_hitter_stays_out),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
