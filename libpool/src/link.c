@@ -113,7 +113,8 @@ int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
 }
 
 // Every ball in play touching one of cluster c's balls at t and closing on it (faster than
-// POOL_LINK_REST_SPEED) joins it, transitively. A ball that touches without closing stays out:
+// POOL_LINK_REST_SPEED, up to POOL_LINK_IMPACT_SPEED: faster is a hit, an event) joins it,
+// transitively. A ball that touches without closing stays out:
 // the balls of a frozen rack touch one another, and a step that linked them all would solve
 // the whole rack's contacts; should the cluster press it later, the collision prediction
 // (which sees linked balls) finds the contact and the trigger links it then.
@@ -138,7 +139,7 @@ static void absorb(pool_sim *sim, int c, double t) {
 				if (!(dist <= reach) || !(dist > 0.0))
 					continue;
 				const double closing = -pool_v3_dot(d, pool_v3_sub(vk, vi)) / dist;
-				if (closing > POOL_LINK_REST_SPEED) {
+				if (closing > POOL_LINK_REST_SPEED && closing <= POOL_LINK_IMPACT_SPEED) {
 					join(sim, k, c, t);
 					changed = 1;
 					break;
@@ -511,10 +512,55 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	return POOL_OK;
 }
 
+// A contact inside cluster c (two of its balls, or one and a rail's nose, touching) closing
+// faster than POOL_LINK_IMPACT_SPEED at t: a hit from outside passed on into the cluster.
+static int hit_inside(pool_sim *sim, int c, double t) {
+	const pool_params *p = &sim->def.params;
+	const pool_table_def *table = &sim->def.table;
+	const double reach = 2.0 * p->ball_radius + POOL_LINK_TOUCH_GAP;
+	int *idx = sim->link_members;
+	pool_ball_state *s = sim->link_states;
+	const int m = members(sim, c, idx);
+	for (int k = 0; k < m; ++k)
+		pool_world_state_now(sim, idx[k], t, &s[k]);
+	for (int a = 0; a < m; ++a) {
+		for (int b = a + 1; b < m; ++b) {
+			const pool_vec3 d = pool_v3_sub(s[b].pos, s[a].pos);
+			const double dist = pool_v3_len(d);
+			if (dist <= reach && dist > 0.0 &&
+			    pool_v3_dot(d, pool_v3_sub(s[a].vel, s[b].vel)) / dist > POOL_LINK_IMPACT_SPEED)
+				return 1;
+		}
+		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
+			const int along_x = pool_rail_along_x((pool_rail)rail);
+			const double side = pool_rail_side((pool_rail)rail);
+			const double line = pool_rail_contact_line(table, sim->dc, (pool_rail)rail);
+			const double across = along_x ? s[a].pos.y : s[a].pos.x, speed = along_x ? s[a].vel.y : s[a].vel.x;
+			if (side * (line - across) <= POOL_LINK_TOUCH_GAP && side * speed > POOL_LINK_IMPACT_SPEED)
+				return 1;
+		}
+	}
+	return 0;
+}
+
 void pool_link_touched(pool_sim *sim, int i, double t) {
 	const int c = sim->body[i].cluster;
 	sim->clusters[c].t_next = t;
 	unsettle(sim, c);
+	// A hit passed on into the cluster (a ball hit into its neighbour or into the rail faster
+	// than the cluster's own forces close a contact): the cluster dissolves and the impulses of
+	// events pass it on, with restitution, where the inelastic step would absorb the bounce; if
+	// the balls press one another again, the trigger links them again. (Without room for the
+	// link_end, the steps take it.)
+	if (hit_inside(sim, c, t)) {
+		int *idx = sim->link_members;
+		const int m = members(sim, c, idx);
+		if (pool_world_reserve_history(sim, 1, m) == POOL_OK) {
+			sim->clusters[c].active = 0;
+			release(sim, idx, m, t);
+			return;
+		}
+	}
 	reschedule(sim, c, t);
 }
 

@@ -48,6 +48,16 @@ extern "C" {
 /// its balls faster than this.
 #define POOL_LINK_REST_SPEED 1e-5
 
+/// m/s: a ball touching a cluster's ball and closing on it faster than this hits it: the
+/// collision is an event (Petit's law, with restitution), not the cluster's (its steps are
+/// inelastic), and the ball joins only if it does not part. The contact forces of a cluster,
+/// about g at most (gravity on a ball resting on others; the cloth's friction is 0.2 g), change a
+/// closing speed by at most g POOL_LINK_STEP_TIME = 9.8 mm/s over a step, so a ball closing faster
+/// was not brought there by persistent contact: a break's ball running into a cluster in the rack
+/// and the frozen neighbours it sets moving. Joined, each of those made the cluster's LCP grow
+/// (9 balls, 22 contacts) and absorbed its bounce.
+#define POOL_LINK_IMPACT_SPEED 1e-2
+
 /// m/s of normal impulse / ball mass per POOL_LINK_STEP_TIME (an acceleration of 1e-5 m/s^2, a
 /// millionth of g): a ball of a cluster whose ball-ball and cushion contacts press it less than
 /// this over a step leaves the cluster (on the cloth; above it once it touches nothing) and
