@@ -45,11 +45,7 @@ static double triangle_dist2(pool_vec3 a, pool_vec3 b, pool_vec3 c) {
 static int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
 	if (!isfinite(T))
 		return 1;
-	// Cheaper still, and enough for most pairs: the path moves at most (|dv| + |da| T) T from
-	// dp, with |.| bounded by the 1-norm (no square root).
-	const double reach = (fabs(dv.x) + fabs(dv.y) + fabs(dv.z) + (fabs(da.x) + fabs(da.y) + fabs(da.z)) * T) * T;
-	const double clear = 2.0 * R * (1.0 + 1e-9) + reach;
-	if (pool_v3_dot(dp, dp) > clear * clear)
+	if (pool_predict_pair_out_of_reach(dp, dv, da, R, T)) // cheaper still, enough for most pairs
 		return 0;
 	const pool_vec3 p1 = pool_v3_madd(dp, 0.5 * T, dv);
 	const pool_vec3 p2 = pool_v3_madd(pool_v3_madd(dp, T, dv), T * T, da);

@@ -3,8 +3,11 @@
 #ifndef POOL_PREDICT_H
 #define POOL_PREDICT_H
 
+#include <math.h>
+
 #include "contact.h"
 #include "pool/ball.h"
+#include "pool/sim.h"
 #include "pool/event.h"
 #include "pool/table.h"
 
@@ -13,6 +16,19 @@
 /// accelerations); INFINITY when none. Touching balls (gap <= POOL_TOUCH_TOLERANCE) follow the
 /// rules of contact.h: 0 when they collide now, else their next meeting.
 double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T);
+
+/// 1 when two balls of radius R with relative motion dp + dv tau + da tau^2 are apart beyond
+/// the touching band and cannot meet over [0, T] (T finite): the path moves at most
+/// (|dv| + |da| T) T from dp, each |.| bounded by the 1-norm (no square root). The cheap test
+/// pool_predict_ball_ball starts with, inline for the schedule's loop over pairs, where most
+/// pairs end here.
+static inline int pool_predict_pair_out_of_reach(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
+	if (!(T >= 0.0 && T < INFINITY))
+		return 0;
+	const double reach = (fabs(dv.x) + fabs(dv.y) + fabs(dv.z) + (fabs(da.x) + fabs(da.y) + fabs(da.z)) * T) * T;
+	const double clear = 2.0 * R + POOL_TOUCH_TOLERANCE + reach;
+	return dp.x * dp.x + dp.y * dp.y + dp.z * dp.z > clear * clear;
+}
 
 /// Earliest tau in [0, T] at which a ball on the cloth (state s, centre acceleration acc)
 /// touches a cushion nose; *rail receives the rail, and *pocket the pocket when the contact

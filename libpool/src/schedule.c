@@ -105,6 +105,8 @@ static void repredict(pool_sim *sim, int i, double now) {
 				dv = pool_v3_scale(dv, -1.0);
 				da = pool_v3_scale(da, -1.0);
 			}
+			if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
+				continue;
 			const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
 			if (!(tau <= T))
 				continue;
@@ -134,14 +136,17 @@ void pool_schedule_predict_all(pool_sim *sim) {
 }
 
 void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now) {
+	// The changed bodies and those whose pending contact was with one of them, in index order.
+	for (int k = 0; k < m; ++k)
+		sim->body[inv[k]].changed = 1;
 	int count = 0;
 	for (int x = 0; x < sim->n; ++x) {
-		int hit = 0;
-		for (int k = 0; k < m; ++k)
-			hit |= x == inv[k] || sim->body[x].partner == inv[k];
-		if (hit)
+		const int partner = sim->body[x].partner;
+		if (sim->body[x].changed || (partner >= 0 && sim->body[partner].changed))
 			sim->work[count++] = x;
 	}
+	for (int k = 0; k < m; ++k)
+		sim->body[inv[k]].changed = 0;
 	for (int k = 0; k < count; ++k)
 		repredict(sim, sim->work[k], now);
 }

@@ -41,6 +41,7 @@ typedef struct pool_body {
 	pool_pocket own_pocket;   ///< for a pocket event
 	int partner;              ///< other body of the pending event in the queue slot, or -1
 	int cluster;              ///< LINK cluster the ball belongs to, or -1
+	int changed;              ///< scratch of pool_schedule_after_event: among the changed bodies
 	int loose;                ///< the cluster's last step found nothing pressing it: it leaves
 	                          ///< the cluster at the next step
 	double tail[6];           ///< linked: velocity (v, w) at the step's end less the segment's mean
