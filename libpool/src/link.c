@@ -550,16 +550,14 @@ void pool_link_touched(pool_sim *sim, int i, double t) {
 	// A hit passed on into the cluster (a ball hit into its neighbour or into the rail faster
 	// than the cluster's own forces close a contact): the cluster dissolves and the impulses of
 	// events pass it on, with restitution, where the inelastic step would absorb the bounce; if
-	// the balls press one another again, the trigger links them again. (Without room for the
-	// link_end, the steps take it.)
+	// the balls press one another again, the trigger links them again. (pool_sim_step reserved
+	// the history for the link_end.)
 	if (hit_inside(sim, c, t)) {
 		int *idx = sim->link_members;
 		const int m = members(sim, c, idx);
-		if (pool_world_reserve_history(sim, 1, m) == POOL_OK) {
-			sim->clusters[c].active = 0;
-			release(sim, idx, m, t);
-			return;
-		}
+		sim->clusters[c].active = 0;
+		release(sim, idx, m, t);
+		return;
 	}
 	reschedule(sim, c, t);
 }

@@ -311,6 +311,13 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 
 void pool_world_record_event(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
                              const int *inv, int m) {
+	// The callers reserve the room first (pool_sim_step for an event and the LINK events it
+	// brings); should that count ever fall short, the history grows here, and if it cannot, the
+	// shot fails rather than write past its arrays.
+	if (pool_world_reserve_history(sim, 1, m)) {
+		sim->failed = POOL_ERR_OUT_OF_MEMORY;
+		return;
+	}
 	pool_event *e = &sim->events[sim->n_events++];
 	memset(e, 0, sizeof *e); // padding too: event lists compare bit for bit
 	e->time = t;
@@ -513,9 +520,11 @@ int pool_sim_step(pool_sim *sim) {
 		sim->stop = POOL_STOP_MAX_EVENTS;
 		return 0;
 	}
-	// Room for the event and a LINK event after it (every ball's state), so nothing past this
-	// point runs out of memory but a link step's LCP workspace.
-	if (pool_world_reserve_history(sim, 2, 2 + sim->n))
+	// Room for the event and the LINK events it can bring (each with up to every ball's state):
+	// a collision between two clusters' balls dissolves both (two link_end) and may start a
+	// cluster (link_begin); a step releases its loose balls (link_end) and records itself. So
+	// nothing past this point runs out of memory but a link step's LCP workspace.
+	if (pool_world_reserve_history(sim, 4, 2 + 3 * sim->n))
 		return POOL_ERR_OUT_OF_MEMORY;
 	sim->started = 1;
 	// A failed link step (its LCP unsolved, or out of memory) ends the shot with that error:
