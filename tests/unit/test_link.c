@@ -192,6 +192,24 @@ static double gravity_step_gain(const pool_params *p, int balls) {
 	return balls * 0.5 * p->ball_mass * p->g * p->g * POOL_LINK_STEP_TIME * POOL_LINK_STEP_TIME;
 }
 
+/// m/s, the speed of the pushed pair (pushed_pair).
+#define PUSH_SPEED 0.5
+
+/// A new shot with the pushed pair of test_pushed_pair_closed_form: a cue ball (id 0) with
+/// topspin 3 v / R touching an object ball (id 1) in front of it, both sliding at PUSH_SPEED along
+/// x from x = 0.6 m; def's mu_ball is set to 0 first.
+static pool_sim *pushed_pair(pool_sim_def *def) {
+	def->params.mu_ball = 0.0;
+	const double R = def->params.ball_radius, v = PUSH_SPEED;
+	pool_sim *sim = make_sim(def);
+	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
+	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
+	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
+	add_ball(sim, &cue);
+	add_ball(sim, &obj);
+	return sim;
+}
+
 // A cue ball with topspin touching an object ball, both sliding at v along x, mu_ball = 0: the
 // cloth pushes the cue ball forward (its spin outruns its speed) and holds the object ball back
 // by the same mu_slide m g, so the contact force is mu_slide m g and the pair moves at v,
@@ -200,15 +218,9 @@ static double gravity_step_gain(const pool_params *p, int balls) {
 static void test_pushed_pair_closed_form(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
-	def.params.mu_ball = 0.0;
+	pool_sim *sim = pushed_pair(&def);
 	const pool_params *p = &def.params;
-	const double R = p->ball_radius, v = 0.5;
-	pool_sim *sim = make_sim(&def);
-	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
-	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
-	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
-	add_ball(sim, &cue);
-	add_ball(sim, &obj);
+	const double R = p->ball_radius, v = PUSH_SPEED;
 	const double t1 = 2.0 * v / (5.0 * p->mu_slide * p->g);
 	assert_int_equal(pool_sim_run_until(sim, 0.9 * t1), POOL_OK);
 	pool_ball_state s[2];
@@ -248,15 +260,9 @@ static void test_pushed_pair_closed_form(void **state) {
 static void test_touching_ball_left_out(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
-	def.params.mu_ball = 0.0;
-	const double R = def.params.ball_radius, v = 0.5;
-	pool_sim *sim = make_sim(&def);
-	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
+	pool_sim *sim = pushed_pair(&def);
+	const double R = def.params.ball_radius;
 	const pool_ball_state side = ball(2, 0.6 - sqrt(2.0) * R, 0.635 + sqrt(2.0) * R, R);
-	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
-	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
-	add_ball(sim, &cue);
-	add_ball(sim, &obj);
 	add_ball(sim, &side);
 	scene_report r = run_scene(sim, &def);
 	check_invariants("touching ball left out", &r, 0.0, 0.0);
@@ -448,17 +454,11 @@ static void test_deterministic(void **state) {
 static void test_hitter_stays_out(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
-	def.params.mu_ball = 0.0;
-	const double R = def.params.ball_radius, v = 0.5;
-	pool_sim *sim = make_sim(&def);
-	pool_ball_state cue = ball(0, 0.6, 0.635, R), obj = ball(1, 0.6 + 2.0 * R, 0.635, R);
+	pool_sim *sim = pushed_pair(&def);
+	const double R = def.params.ball_radius;
 	pool_ball_state hitter = ball(2, 0.6 + 2.0 * R + 0.05, 0.635 + 0.3, R);
-	cue.vel = obj.vel = pool_v3(v, 0.0, 0.0);
-	cue.omega = pool_v3(0.0, 3.0 * v / R, 0.0);
 	hitter.vel = pool_v3(0.0, -3.0, 0.0);
 	hitter.omega = pool_v3(-3.0 / R, 0.0, 0.0); // rolling
-	add_ball(sim, &cue);
-	add_ball(sim, &obj);
 	add_ball(sim, &hitter);
 	scene_report r = run_scene(sim, &def);
 	check_invariants("hitter stays out", &r, 0.0, 0.0);
