@@ -925,89 +925,74 @@ static int set_mode(batch_options *o, batch_mode mode, const char *option) {
 	return 0;
 }
 
+// One option of pool-batch (pool_cli_walk); *have_seed in the options' context.
+typedef struct batch_parse {
+	batch_options *o;
+	bool have_seed;
+} batch_parse;
+
+static int batch_option(void *context, const char *a, const char *v) {
+	batch_parse *bp = context;
+	batch_options *o = bp->o;
+	if (strcmp(a, "--no-progress") == 0) {
+		o->no_progress = true;
+		return 0;
+	}
+	if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+		o->output_path = v;
+	} else if (strcmp(a, "--strikes") == 0) {
+		o->strikes_path = v;
+		return set_mode(o, MODE_LIST, a);
+	} else if (strcmp(a, "--grid") == 0) {
+		o->grid_spec = v;
+		return set_mode(o, MODE_GRID, a);
+	} else if (strcmp(a, "--random") == 0) {
+		const int status = set_mode(o, MODE_RANDOM, a);
+		if (status == 0 && (!pool_cli_parse_count(v, &o->random_count) || o->random_count < 1 ||
+		                    o->random_count > BATCH_MAX_SHOTS))
+			return pool_cli_usage_error(PROGRAM, "--random: '%s' is not a number of shots from 1 to %ld",
+			                            pool_cli_arg(v), BATCH_MAX_SHOTS);
+		return status;
+	} else if (strcmp(a, "--ranges") == 0) {
+		o->ranges_spec = v;
+	} else if (strcmp(a, "--seed") == 0) {
+		bp->have_seed = true;
+		if (!pool_cli_parse_count(v, &o->seed))
+			return pool_cli_usage_error(PROGRAM, "--seed: '%s' is not a whole number >= 0", pool_cli_arg(v));
+	} else if (strcmp(a, "--ball") == 0) {
+		o->have_ball = true;
+		if (!parse_int32(v, &o->ball))
+			return pool_cli_usage_error(PROGRAM, "--ball: '%s' is not a ball id (a 32-bit integer)", pool_cli_arg(v));
+	} else if (strcmp(a, "--threads") == 0) {
+		if (!pool_cli_parse_count(v, &o->threads) || o->threads < 1 || o->threads > BATCH_MAX_THREADS)
+			return pool_cli_usage_error(PROGRAM, "--threads: '%s' is not a number of threads from 1 to %d",
+			                            pool_cli_arg(v), BATCH_MAX_THREADS);
+	} else if (strcmp(a, "--format") == 0) {
+		if (strcmp(v, "csv") == 0)
+			o->format = FORMAT_CSV;
+		else if (strcmp(v, "jsonl") == 0)
+			o->format = FORMAT_JSONL;
+		else
+			return pool_cli_usage_error(PROGRAM, "--format: '%s' is not csv or jsonl", pool_cli_arg(v));
+	} else if (strcmp(a, "--max-input") == 0) {
+		return pool_cli_max_input(PROGRAM, v, &o->max_input);
+	}
+	return 0;
+}
+
 static int parse_options(int argc, char **argv, batch_options *o) {
 	memset(o, 0, sizeof *o);
 	o->max_input = POOL_INPUT_DEFAULT_MAX;
 	o->seed = 1;
-	bool only_files = false, have_seed = false;
-	for (int i = 1; i < argc; ++i) {
-		const char *a = argv[i];
-		if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
-			if (o->layout_path)
-				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one layout per run)",
-				                            pool_cli_arg(a));
-			o->layout_path = a;
-			continue;
-		}
-		if (strcmp(a, "--") == 0) {
-			only_files = true;
-			continue;
-		}
-		if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-			o->help = true;
-			continue;
-		}
-		if (strcmp(a, "--no-progress") == 0) {
-			o->no_progress = true;
-			continue;
-		}
-		static const char *const with_value[] = {"-o", "--output", "--strikes", "--grid", "--random",
-		                                         "--ranges", "--seed", "--ball", "--threads",
-		                                         "--format", "--max-input", NULL};
-		bool known = false;
-		for (const char *const *w = with_value; *w; ++w)
-			known = known || strcmp(a, *w) == 0;
-		if (!known)
-			return pool_cli_usage_error(PROGRAM, "unknown option '%s'", pool_cli_arg(a));
-		if (i + 1 >= argc)
-			return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
-		const char *v = argv[++i];
-		int status = 0;
-		if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-			o->output_path = v;
-		} else if (strcmp(a, "--strikes") == 0) {
-			status = set_mode(o, MODE_LIST, a);
-			o->strikes_path = v;
-		} else if (strcmp(a, "--grid") == 0) {
-			status = set_mode(o, MODE_GRID, a);
-			o->grid_spec = v;
-		} else if (strcmp(a, "--random") == 0) {
-			status = set_mode(o, MODE_RANDOM, a);
-			if (status == 0 && (!pool_cli_parse_count(v, &o->random_count) || o->random_count < 1 ||
-			                    o->random_count > BATCH_MAX_SHOTS))
-				status = pool_cli_usage_error(PROGRAM, "--random: '%s' is not a number of shots from 1 to %ld",
-				                              pool_cli_arg(v), BATCH_MAX_SHOTS);
-		} else if (strcmp(a, "--ranges") == 0) {
-			o->ranges_spec = v;
-		} else if (strcmp(a, "--seed") == 0) {
-			have_seed = true;
-			if (!pool_cli_parse_count(v, &o->seed))
-				status = pool_cli_usage_error(PROGRAM, "--seed: '%s' is not a whole number >= 0",
-				                              pool_cli_arg(v));
-		} else if (strcmp(a, "--ball") == 0) {
-			o->have_ball = true;
-			if (!parse_int32(v, &o->ball))
-				status = pool_cli_usage_error(PROGRAM, "--ball: '%s' is not a ball id (a 32-bit integer)",
-				                              pool_cli_arg(v));
-		} else if (strcmp(a, "--threads") == 0) {
-			if (!pool_cli_parse_count(v, &o->threads) || o->threads < 1 || o->threads > BATCH_MAX_THREADS)
-				status = pool_cli_usage_error(PROGRAM, "--threads: '%s' is not a number of threads from 1 to %d",
-				                              pool_cli_arg(v), BATCH_MAX_THREADS);
-		} else if (strcmp(a, "--format") == 0) {
-			if (strcmp(v, "csv") == 0)
-				o->format = FORMAT_CSV;
-			else if (strcmp(v, "jsonl") == 0)
-				o->format = FORMAT_JSONL;
-			else
-				status = pool_cli_usage_error(PROGRAM, "--format: '%s' is not csv or jsonl", pool_cli_arg(v));
-		} else if (strcmp(a, "--max-input") == 0) {
-			if (!pool_parse_byte_count(v, &o->max_input))
-				status = pool_cli_usage_error(PROGRAM, "--max-input: '%s' is not a size in bytes > 0 "
-				                              "(e.g. 1000000, 512k, 64M, 1G)", pool_cli_arg(v));
-		}
-		if (status)
-			return status;
-	}
+	static const char *const flags[] = {"--no-progress", NULL};
+	static const char *const with_value[] = {"-o",     "--output", "--strikes", "--grid",   "--random",    "--ranges",
+	                                         "--seed", "--ball",   "--threads", "--format", "--max-input", NULL};
+	batch_parse bp = {o, false};
+	const int status =
+	    pool_cli_walk(PROGRAM, argc, argv, "layout", flags, with_value, batch_option, &bp, &o->layout_path, &o->help);
+	if (status)
+		return status;
+	const bool have_seed = bp.have_seed;
 	if (o->help)
 		return 0;
 	if (!o->layout_path)

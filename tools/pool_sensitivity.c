@@ -162,85 +162,61 @@ static int parse_ids(const char *option, const char *text, const pool_scenario *
 	return 0;
 }
 
+// One option of pool-sensitivity (pool_cli_walk).
+static int sens_option(void *context, const char *a, const char *v) {
+	sens_options *o = context;
+	long count = 0;
+	if (strcmp(a, "--no-progress") == 0) {
+		o->no_progress = true;
+	} else if (strcmp(a, "--sd") == 0) {
+		o->sd_spec = v;
+	} else if (strcmp(a, "--position-sd") == 0) {
+		o->have_position_sd = true;
+		if (!pool_cli_parse_double(v, &o->position_sd) || o->position_sd < 0.0 || o->position_sd > SENS_MAX_ABS)
+			return pool_cli_usage_error(PROGRAM, "--position-sd: '%s' is not a standard deviation in "
+			                            "metres (a number from 0 to %g)", pool_cli_arg(v), SENS_MAX_ABS);
+	} else if (strcmp(a, "--position-balls") == 0) {
+		o->position_balls = v;
+	} else if (strcmp(a, "-n") == 0 || strcmp(a, "--samples") == 0) {
+		if (!pool_cli_parse_count(v, &o->samples) || o->samples < 1 || o->samples > SENS_MAX_SAMPLES)
+			return pool_cli_usage_error(PROGRAM, "%s: '%s' is not a number of samples from 1 to %ld", a,
+			                            pool_cli_arg(v), SENS_MAX_SAMPLES);
+	} else if (strcmp(a, "--seed") == 0) {
+		if (!pool_cli_parse_count(v, &count) || count < 1 || (unsigned long)count > SENS_MAX_SEED)
+			return pool_cli_usage_error(PROGRAM, "--seed: '%s' is not a whole number from 1 to %lu", pool_cli_arg(v),
+			                            SENS_MAX_SEED);
+		o->seed = (unsigned long)count;
+	} else if (strcmp(a, "--balls") == 0) {
+		o->balls = v;
+	} else if (strcmp(a, "--models") == 0) {
+		o->models = v;
+	} else if (strcmp(a, "--threads") == 0) {
+		if (!pool_cli_parse_count(v, &o->threads) || o->threads < 1 || o->threads > SENS_MAX_THREADS)
+			return pool_cli_usage_error(PROGRAM, "--threads: '%s' is not a number of threads from 1 to %d",
+			                            pool_cli_arg(v), SENS_MAX_THREADS);
+	} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+		o->prefix = v;
+		if (!v[0])
+			return pool_cli_usage_error(PROGRAM, "%s: empty PREFIX", a);
+	} else if (strcmp(a, "--max-input") == 0) {
+		return pool_cli_max_input(PROGRAM, v, &o->max_input);
+	}
+	return 0;
+}
+
 static int parse_options(int argc, char **argv, sens_options *o) {
 	memset(o, 0, sizeof *o);
 	o->samples = SENS_DEFAULT_SAMPLES;
 	o->seed = 1;
 	o->max_input = POOL_INPUT_DEFAULT_MAX;
-	bool only_files = false;
-	for (int i = 1; i < argc; ++i) {
-		const char *a = argv[i];
-		if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
-			if (o->scenario_path)
-				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one scenario per run)",
-				                            pool_cli_arg(a));
-			o->scenario_path = a;
-			continue;
-		}
-		if (strcmp(a, "--") == 0) {
-			only_files = true;
-			continue;
-		}
-		if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-			o->help = true;
-			continue;
-		}
-		if (strcmp(a, "--no-progress") == 0) {
-			o->no_progress = true;
-			continue;
-		}
-		static const char *const with_value[] = {"--sd", "--position-sd", "--position-balls", "-n",
-		                                         "--samples", "--seed", "--balls", "--models",
-		                                         "--threads", "-o", "--output", "--max-input", NULL};
-		bool known = false;
-		for (const char *const *w = with_value; *w; ++w)
-			known = known || strcmp(a, *w) == 0;
-		if (!known)
-			return pool_cli_usage_error(PROGRAM, "unknown option '%s'", pool_cli_arg(a));
-		if (i + 1 >= argc)
-			return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
-		const char *v = argv[++i];
-		int status = 0;
-		long count = 0;
-		if (strcmp(a, "--sd") == 0) {
-			o->sd_spec = v;
-		} else if (strcmp(a, "--position-sd") == 0) {
-			o->have_position_sd = true;
-			if (!pool_cli_parse_double(v, &o->position_sd) || o->position_sd < 0.0 ||
-			    o->position_sd > SENS_MAX_ABS)
-				status = pool_cli_usage_error(PROGRAM, "--position-sd: '%s' is not a standard deviation in "
-				                              "metres (a number from 0 to %g)", pool_cli_arg(v), SENS_MAX_ABS);
-		} else if (strcmp(a, "--position-balls") == 0) {
-			o->position_balls = v;
-		} else if (strcmp(a, "-n") == 0 || strcmp(a, "--samples") == 0) {
-			if (!pool_cli_parse_count(v, &o->samples) || o->samples < 1 || o->samples > SENS_MAX_SAMPLES)
-				status = pool_cli_usage_error(PROGRAM, "%s: '%s' is not a number of samples from 1 to %ld", a,
-				                              pool_cli_arg(v), SENS_MAX_SAMPLES);
-		} else if (strcmp(a, "--seed") == 0) {
-			if (!pool_cli_parse_count(v, &count) || count < 1 || (unsigned long)count > SENS_MAX_SEED)
-				status = pool_cli_usage_error(PROGRAM, "--seed: '%s' is not a whole number from 1 to %lu",
-				                              pool_cli_arg(v), SENS_MAX_SEED);
-			o->seed = (unsigned long)count;
-		} else if (strcmp(a, "--balls") == 0) {
-			o->balls = v;
-		} else if (strcmp(a, "--models") == 0) {
-			o->models = v;
-		} else if (strcmp(a, "--threads") == 0) {
-			if (!pool_cli_parse_count(v, &o->threads) || o->threads < 1 || o->threads > SENS_MAX_THREADS)
-				status = pool_cli_usage_error(PROGRAM, "--threads: '%s' is not a number of threads from 1 to %d",
-				                              pool_cli_arg(v), SENS_MAX_THREADS);
-		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-			o->prefix = v;
-			if (!v[0])
-				status = pool_cli_usage_error(PROGRAM, "%s: empty PREFIX", a);
-		} else if (strcmp(a, "--max-input") == 0) {
-			if (!pool_parse_byte_count(v, &o->max_input))
-				status = pool_cli_usage_error(PROGRAM, "--max-input: '%s' is not a size in bytes > 0 "
-				                              "(e.g. 1000000, 512k, 64M, 1G)", pool_cli_arg(v));
-		}
-		if (status)
-			return status;
-	}
+	static const char *const flags[] = {"--no-progress", NULL};
+	static const char *const with_value[] = {"--sd",      "--position-sd", "--position-balls", "-n",        "--samples",
+	                                         "--seed",    "--balls",       "--models",         "--threads", "-o",
+	                                         "--output",  "--max-input",   NULL};
+	const int status =
+	    pool_cli_walk(PROGRAM, argc, argv, "scenario", flags, with_value, sens_option, o, &o->scenario_path, &o->help);
+	if (status)
+		return status;
 	if (o->help)
 		return 0;
 	if (!o->scenario_path)

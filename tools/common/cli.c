@@ -1,4 +1,4 @@
-// Command-line plumbing shared by pool-sim and pool-rack.
+// Command-line plumbing shared by the commands.
 #include "cli.h"
 
 #include <errno.h>
@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "atomic_file.h"
+#include "read_input.h"
 #include "pool/base.h"
 #include "text_escape.h"
 
@@ -69,4 +70,55 @@ int pool_cli_write_output(const char *program, const char *path, const char *tex
 		return POOL_EXIT_INTERNAL;
 	}
 	return 0;
+}
+
+static bool named(const char *const *names, const char *a) {
+	for (const char *const *n = names; n && *n; ++n)
+		if (strcmp(a, *n) == 0)
+			return true;
+	return false;
+}
+
+int pool_cli_walk(const char *program, int argc, char **argv, const char *what, const char *const *flags,
+                  const char *const *with_value, pool_cli_option_fn option, void *context, const char **path,
+                  bool *help) {
+	bool only_files = false;
+	for (int i = 1; i < argc; ++i) {
+		const char *a = argv[i];
+		if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
+			if (*path)
+				return pool_cli_usage_error(program, "unexpected argument '%s' (one %s per run)", pool_cli_arg(a),
+				                            what);
+			*path = a;
+			continue;
+		}
+		if (strcmp(a, "--") == 0) {
+			only_files = true;
+			continue;
+		}
+		if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+			*help = true;
+			continue;
+		}
+		int status;
+		if (named(flags, a)) {
+			status = option(context, a, NULL);
+		} else if (named(with_value, a)) {
+			if (i + 1 >= argc)
+				return pool_cli_usage_error(program, "option %s needs a value", a);
+			status = option(context, a, argv[++i]);
+		} else {
+			return pool_cli_usage_error(program, "unknown option '%s'", pool_cli_arg(a));
+		}
+		if (status)
+			return status;
+	}
+	return 0;
+}
+
+int pool_cli_max_input(const char *program, const char *value, size_t *out) {
+	if (pool_parse_byte_count(value, out))
+		return 0;
+	return pool_cli_usage_error(program, "--max-input: '%s' is not a size in bytes > 0 (e.g. 1000000, 512k, 64M, 1G)",
+	                            pool_cli_arg(value));
 }

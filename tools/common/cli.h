@@ -1,9 +1,10 @@
-// Command-line plumbing shared by pool-sim and pool-rack: exit statuses, usage errors, number
+// Command-line plumbing shared by the commands (pool-sim, pool-rack, pool-batch, pool-sensitivity): exit statuses, usage errors, number
 // options and writing the output document (INTERFACES.md: exit 2 names the offending option).
 #ifndef POOL_TOOLS_CLI_H
 #define POOL_TOOLS_CLI_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -35,6 +36,25 @@ bool pool_cli_parse_double(const char *text, double *out);
 /// Reads the whole of text as a decimal integer >= 0; false (out untouched) for empty text,
 /// trailing characters, a sign making it negative, or overflow.
 bool pool_cli_parse_count(const char *text, long *out);
+
+/// One option of pool_cli_walk: called with its name and its value (NULL for an option without
+/// one); returns 0, or an exit status (pool_cli_usage_error's) that stops the walk.
+typedef int (*pool_cli_option_fn)(void *context, const char *name, const char *value);
+
+/// Walks argv[1..argc) the way pool-batch and pool-sensitivity read their arguments: "-h" and
+/// "--help" set *help; an argument not starting with '-', "-" itself, and everything after "--"
+/// is the one input file, *path (a second one is "unexpected argument ... (one WHAT per run)");
+/// the options named in flags (NULL-terminated) go to `option` with no value, those in
+/// with_value take the next argument (missing: "option X needs a value"); any other is
+/// "unknown option". Returns 0 or the first nonzero status (usage errors print and give
+/// POOL_EXIT_BAD_INPUT).
+int pool_cli_walk(const char *program, int argc, char **argv, const char *what, const char *const *flags,
+                  const char *const *with_value, pool_cli_option_fn option, void *context, const char **path,
+                  bool *help);
+
+/// Reads a --max-input value (pool_parse_byte_count: 1000000, 512k, 64M, 1G) into *out; 0, or
+/// the usage error naming the option.
+int pool_cli_max_input(const char *program, const char *value, size_t *out);
 
 /// Writes text to path atomically (pool_write_file_atomic), or to standard output when path is
 /// NULL. Returns 0, or POOL_EXIT_INTERNAL after printing "PROGRAM: <why>" on standard error.
