@@ -199,14 +199,15 @@ static int solve_basis(link_problem *P, double mass, double *residual, int *basi
 	double worst = 0.0, qmax = 0.0;
 	for (int i = 0; i < P->nc; ++i) {
 		const link_contact *c = &P->c[i];
+		// J dV of a direction is the direction (ball a's first three entries) dotted with the
+		// change of the contact's relative velocity: one 3-vector per contact, not 12 products a
+		// row.
+		const pool_vec3 du = contact_velocity(c, dV);
 		double friction = 0.0;
 		for (int j = 0; j < P->dirs; ++j) {
 			const size_t r = row_of(P, i, j);
-			double w = P->m.q[r];
-			for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
-				const double *g = directions(P, i, side) + 6 * j, *d = dV + 6 * (side ? c->b : c->a);
-				w += g[0] * d[0] + g[1] * d[1] + g[2] * d[2] + g[3] * d[3] + g[4] * d[4] + g[5] * d[5];
-			}
+			const double *g = directions(P, i, 0) + 6 * j;
+			double w = P->m.q[r] + g[0] * du.x + g[1] * du.y + g[2] * du.z;
 			if (j > 0) {
 				w += z[lambda_of(P, i)];
 				friction += z[r];
@@ -251,13 +252,11 @@ static int mend_basis(link_problem *P, const int *B, int k, const double *y, dou
 			const size_t nrow = row_of(P, i, 0), lrow = lambda_of(P, i);
 			double w[1 + POOL_LINK_ETA_MAX], friction = 0.0;
 			int slip_dir = -1, big_dir = -1, neg_dir = -1;
+			const pool_vec3 du = contact_velocity(c, dV); // (as in solve_basis)
 			for (int j = 0; j < P->dirs; ++j) {
 				const size_t r = row_of(P, i, j);
-				w[j] = P->m.q[r];
-				for (int side = 0; side < (c->b >= 0 ? 2 : 1); ++side) {
-					const double *g = directions(P, i, side) + 6 * j, *d = dV + 6 * (side ? c->b : c->a);
-					w[j] += g[0] * d[0] + g[1] * d[1] + g[2] * d[2] + g[3] * d[3] + g[4] * d[4] + g[5] * d[5];
-				}
+				const double *g = directions(P, i, 0) + 6 * j;
+				w[j] = P->m.q[r] + g[0] * du.x + g[1] * du.y + g[2] * du.z;
 				if (j == 0)
 					continue;
 				w[j] += z[lrow];
