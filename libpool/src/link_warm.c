@@ -35,8 +35,7 @@ static double matrix_entry(const link_problem *P, const link_warm_unknown *r, co
 		return r->contact != c->contact || c->dir < 0 ? 0.0 : c->dir == 0 ? P->c[r->contact].mu : -1.0;
 	if (c->dir < 0) // the lambda column: E on its contact's friction rows
 		return r->contact == c->contact && r->dir > 0 ? 1.0 : 0.0;
-	const link_shared sh = shared_sides(P, r->contact, c->contact);
-	return coupling(P, r->contact, r->dir, &sh, c->h);
+	return coupling_of(P, r->contact, r->dir, c->contact, c->h);
 }
 
 /// Solves the k x k system S y = b in place (Gaussian elimination, partial pivoting; y in b).
