@@ -138,7 +138,7 @@ static void absorb(pool_sim *sim, int c, double t) {
 				const double dist = pool_v3_len(d);
 				if (!(dist <= reach) || !(dist > 0.0))
 					continue;
-				const double closing = -pool_v3_dot(d, pool_v3_sub(vk, vi)) / dist;
+				const double closing = pool_closing_speed(pk, vk, pi, vi);
 				if (closing > POOL_LINK_REST_SPEED && closing <= POOL_LINK_IMPACT_SPEED) {
 					join(sim, k, c, t);
 					changed = 1;
@@ -381,8 +381,7 @@ static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s
 				const pool_ball_state pair[2] = {free_state[a], free_state[b]};
 				const pool_vec3 aa = ba->loose ? pool_motion_accel(&sim->def.params, &pair[0]) : sim->link_accel[a];
 				const pool_vec3 ab = bb->loose ? pool_motion_accel(&sim->def.params, &pair[1]) : sim->link_accel[b];
-				const pool_vec3 d = pool_v3_sub(pair[0].pos, pair[1].pos);
-				const double closing = -pool_v3_dot(d, pool_v3_sub(pair[0].vel, pair[1].vel)) / pool_v3_len(d);
+				const double closing = pool_closing_speed(pair[0].pos, pair[0].vel, pair[1].pos, pair[1].vel);
 				if (closing > POOL_APPROACH_EPS || pressed_with(pair, aa, ab)) {
 					changed |= ba->loose | bb->loose;
 					ba->loose = bb->loose = 0;
@@ -528,7 +527,7 @@ static int hit_inside(pool_sim *sim, int c, double t) {
 			const pool_vec3 d = pool_v3_sub(s[b].pos, s[a].pos);
 			const double dist = pool_v3_len(d);
 			if (dist <= reach && dist > 0.0 &&
-			    pool_v3_dot(d, pool_v3_sub(s[a].vel, s[b].vel)) / dist > POOL_LINK_IMPACT_SPEED)
+			    pool_closing_speed(s[a].pos, s[a].vel, s[b].pos, s[b].vel) > POOL_LINK_IMPACT_SPEED)
 				return 1;
 		}
 		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {

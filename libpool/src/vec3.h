@@ -22,6 +22,13 @@ static inline pool_vec3 pool_v3_cross(pool_vec3 a, pool_vec3 b) {
 	return pool_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 static inline double pool_v3_len(pool_vec3 a) { return sqrt(pool_v3_dot(a, a)); }
+
+/// Speed at which point a (velocity va) closes on point b (vb) along the line between them (< 0:
+/// parting); the caller makes sure they are apart.
+static inline double pool_closing_speed(pool_vec3 pa, pool_vec3 va, pool_vec3 pb, pool_vec3 vb) {
+	const pool_vec3 d = pool_v3_sub(pa, pb);
+	return -pool_v3_dot(d, pool_v3_sub(va, vb)) / pool_v3_len(d);
+}
 /// k x a with k = (0, 0, 1).
 static inline pool_vec3 pool_v3_kcross(pool_vec3 a) { return pool_v3(-a.y, a.x, 0.0); }
 /// Horizontal part (z dropped).

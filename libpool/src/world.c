@@ -388,7 +388,7 @@ static pool_result note_collision(pool_sim *sim, pool_event_type type, const int
 static int parting(const pool_ball_state *s) {
 	const pool_vec3 d = pool_v3_sub(s[1].pos, s[0].pos);
 	const double dist = pool_v3_len(d);
-	return dist > 0.0 && pool_v3_dot(d, pool_v3_sub(s[1].vel, s[0].vel)) / dist > POOL_PARTING_SPEED;
+	return dist > 0.0 && -pool_closing_speed(s[0].pos, s[0].vel, s[1].pos, s[1].vel) > POOL_PARTING_SPEED;
 }
 
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.
