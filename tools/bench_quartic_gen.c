@@ -10,7 +10,7 @@ void bq_gen_thesis(gsl_rng *rng, double *coeffs, long n) {
 	}
 }
 
-// Table and ball (PHYSICS.md): playing area, radius, friction.
+// Table and ball (docs/physics.md): playing area, radius, friction.
 static const double bq_len = 2.54, bq_wid = 1.27, bq_r = 0.028575, bq_g = 9.81;
 static const double bq_pi = 3.14159265358979323846;
 static const double bq_mu_slide = 0.2, bq_mu_roll = 0.01;

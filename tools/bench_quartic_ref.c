@@ -1,7 +1,7 @@
 // pool-bench-quartic: long-double reference roots, independent of the solvers under test.
 //
 // How the reference is built (and why it can be trusted for well-conditioned cases):
-// 1. The double coefficients are the exact problem (QUARTIC.md: reference roots are those of the
+// 1. The double coefficients are the exact problem (docs/quartic.md: reference roots are those of the
 //    rounded coefficients). Exactly-zero leading coefficients lower the degree; an exactly-zero
 //    constant term gives an exact root 0 (factored out exactly).
 // 2. All remaining complex roots are found together by the Aberth-Ehrlich iteration in long
@@ -9,7 +9,7 @@
 //    solvers' output is only used as starting points; the iteration converges from any start.
 // 3. A root with |Im z| <= 1e-9 |z| is real (a well-conditioned real root, kappa <= 1e-9 / u,
 //    gets |Im z| of order kappa u_ld |z| <= 1e-12 |z|); one with |Im z| >= 1e-3 |z| is complex;
-//    in between the case is ill-conditioned (QUARTIC.md) and only reported.
+//    in between the case is ill-conditioned (docs/quartic.md) and only reported.
 // 4. Each real root is polished by Newton's method in long double and then VERIFIED: p changes
 //    sign (evaluated in long double) between r - h and r + h with h = 100 kappa u |r|, ten times
 //    tighter than the tolerance solvers are judged by, and neighbouring brackets do not overlap.

@@ -30,7 +30,7 @@ bool bq_ref_smallest_in(const bq_ref *ref, double lo, double hi, double *root, d
 /// Fills n quartics (5 coefficients each, a4 first): |a_i| log-uniform in [1e-6, 1e6], random signs.
 void bq_gen_thesis(gsl_rng *rng, double *coeffs, long n);
 
-/// Fills n quartics from random ball pairs on a pool table (PHYSICS.md, "Predicting events").
+/// Fills n quartics from random ball pairs on a pool table (docs/physics.md, "Predicting events").
 void bq_gen_balls(gsl_rng *rng, double *coeffs, long n);
 
 #endif

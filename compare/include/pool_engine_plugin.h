@@ -104,7 +104,7 @@ typedef const pool_engine_api *(*pool_engine_entry_fn)(void);
 /// Optional second export, looked up by name (added without changing the ABI version: a plugin
 /// without it says nothing about models, and its records have "unsupported_models": null):
 ///     int pool_engine_unsupported_models(const char *scenario_json, char *out, size_t out_size);
-/// Writes into out the models the scenario selects (its "models" object, PHYSICS.md "Optional
+/// Writes into out the models the scenario selects (its "models" object, docs/physics.md "Optional
 /// models") that the engine cannot express, as "kind=name" separated by commas
 /// ("cushion=mathavan2010,squirt=endmass"; "" when it expresses them all) and returns how many,
 /// or -1 with the parser's message in out for a scenario it cannot read. The engine still runs
@@ -117,7 +117,7 @@ typedef int (*pool_engine_models_fn)(const char *scenario_json, char *out, size_
 /// Optional third export, looked up by name (added without changing the ABI version: a plugin
 /// without it says nothing, and its records have "link_cpu_share": null):
 ///     int pool_engine_link_stats(void *engine, pool_engine_link_info *out);
-/// What the engine's persistent-contact steps (libpool's LINK, PHYSICS.md) cost in the run so
+/// What the engine's persistent-contact steps (libpool's LINK, docs/physics.md) cost in the run so
 /// far. The plugin times its own calls (the library has no clock): step_seconds is the time of
 /// every simulation step, link_seconds the part spent in steps that produced a link event.
 /// Returns 0, or -1 when it cannot say.

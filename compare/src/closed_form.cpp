@@ -1,5 +1,5 @@
-// The closed-form motion of a single ball on the cloth (PHYSICS.md "Motion between events";
-// VALIDATION.md 1-3): slide along a parabola until the slip vanishes, roll in a straight line
+// The closed-form motion of a single ball on the cloth (docs/physics.md "Motion between events";
+// docs/validation.md 1-3): slide along a parabola until the slip vanishes, roll in a straight line
 // until it stops, with the z-spin decaying independently.
 #include <cmath>
 #include <limits>
@@ -245,7 +245,7 @@ bool cloth_impact(const pool_params &p, Vector3d *v, Vector3d *w) {
 	return slipping;
 }
 
-// The closed forms strike the ball by PHYSICS.md "Cue strike" alone: with squirt selected an
+// The closed forms strike the ball by docs/physics.md "Cue strike" alone: with squirt selected an
 // off-centre strike launches the ball elsewhere, so they do not apply (libpool's reference does,
 // with the scenario's models). The other optional models act only at cushions and between balls,
 // which a closed-form shot never meets.

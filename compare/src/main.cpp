@@ -1,5 +1,5 @@
 // pool-compare: measures engine plugins against the closed forms and libpool on shared scenarios
-// (docs/INTERFACES.md, docs/ENGINES.md).
+// (docs/interfaces.md, docs/engines.md).
 #include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -58,7 +58,7 @@ struct Record {
 
 	int engine_messages = 0;         ///< lines the engine printed (kept in DIR/engines.log)
 
-	// Airborne motion (PHYSICS.md "Airborne", "Ball-cloth"): landings on the cloth, matched in
+	// Airborne motion (docs/physics.md "Airborne", "Ball-cloth"): landings on the cloth, matched in
 	// order per ball (the k-th landing of a ball in the engine with its k-th in the reference).
 	int landings_reference = 0;           ///< landings (BALL_TABLE events) of the reference
 	int landings_engine = 0;              ///< landings the engine reported

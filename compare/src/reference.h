@@ -1,4 +1,4 @@
-// What an engine is measured against: the closed form of PHYSICS.md where one exists (a single
+// What an engine is measured against: the closed form of docs/physics.md where one exists (a single
 // ball on the cloth that meets no cushion), otherwise libpool's exact event-driven result.
 #ifndef POOL_COMPARE_REFERENCE_H
 #define POOL_COMPARE_REFERENCE_H
@@ -45,7 +45,7 @@ struct Apex {
 	double z = 0.0; ///< m, height of the centre
 };
 
-/// Settling rule of the airborne closed form (PHYSICS.md "Ball-cloth"): a rebound whose flight
+/// Settling rule of the airborne closed form (docs/physics.md "Ball-cloth"): a rebound whose flight
 /// 2 v_z' / g would last less than this settles on the cloth instead (v_z = 0, z = R). With
 /// e_table < 1 the flight times shrink geometrically (ratio e_table), so a bounce sequence ends
 /// after at most 1 + log(t_first / kSettleFlightTime) / log(1 / e_table) landings (10 for the
@@ -67,7 +67,7 @@ public:
 	/// Why there is no ground truth ("" when there is).
 	virtual std::string why_none() const { return ""; }
 	/// False when the ground truth is itself approximate: libpool's result with LINK steps
-	/// (persistent contact advanced by first-order LCP steps, PHYSICS.md "LINK"), for which no
+	/// (persistent contact advanced by first-order LCP steps, docs/physics.md "LINK"), for which no
 	/// exact solution exists.
 	virtual bool exact() const { return has_truth(); }
 
@@ -96,13 +96,13 @@ std::unique_ptr<Reference> make_airborne_closed_form_reference(const Scenario &s
 /// no states; the engines still run (to max_time) and their rows say "no reference".
 std::unique_ptr<Reference> make_no_reference(const Scenario &scenario, const std::string &why);
 
-/// Petit's impact of a ball with the cloth (PHYSICS.md "Collisions": obstacle, n = k,
+/// Petit's impact of a ball with the cloth (docs/physics.md "Collisions": obstacle, n = k,
 /// N = e_table, mu = mu_table): v, w just before -> just after. Needs v_z < 0. Implemented here
 /// from the specification, independently of libpool. Returns true when the contact slipped
 /// throughout (s >= 0), false when it stuck.
 bool cloth_impact(const pool_params &params, Eigen::Vector3d *v, Eigen::Vector3d *w);
 
-/// Velocity and spin a cue strike gives a ball at rest (PHYSICS.md "Cue strike", computed here
+/// Velocity and spin a cue strike gives a ball at rest (docs/physics.md "Cue strike", computed here
 /// independently of libpool); planar drops the vertical velocity.
 void strike_velocities(const pool_params &params, const pool_strike &strike, bool planar,
                        Eigen::Vector3d *vel, Eigen::Vector3d *omega);

@@ -31,7 +31,7 @@ json_t *record_object(const Record &r) {
 	json_object_set_new(o, "phantom_collisions", json_integer(r.phantom_collisions));
 	json_object_set_new(o, "max_penetration", number_or_null(r.max_penetration));
 	json_object_set_new(o, "reference", json_string(r.reference.c_str()));
-	// Beyond INTERFACES.md:
+	// Beyond docs/interfaces.md:
 	json_object_set_new(o, "speed", number_or_null(r.speed()));
 	json_object_set_new(o, "cpu_seconds_min", number_or_null(r.cpu_seconds_min));
 	json_object_set_new(o, "repetitions", json_integer(r.repetitions));
@@ -610,7 +610,7 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 	std::ostringstream out;
 	out << "# Engine comparison: libpool against time-stepped engines\n\n";
 	out << "Command: `" << command_line << "`  \nMachine: " << machine_description() << "\n\n";
-	out << "Errors are against the closed form of PHYSICS.md where one exists (`closed-form`), else against "
+	out << "Errors are against the closed form of docs/physics.md where one exists (`closed-form`), else against "
 	       "libpool's exact event-driven result (`libpool`, whose own errors are then 0 by definition). "
 	       "States are compared at the time the engine actually reached (a step boundary), with the reference "
 	       "evaluated at that same time. `sim s / CPU s` is simulated seconds per CPU second (median of the "
@@ -637,7 +637,7 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 	if (!links.empty())
 		out << "## Persistent contact (LINK scenarios)\n\nIn these scenes contact persists (a ball pushing or "
 		       "resting on another): libpool advances the touching balls as a cluster by LCP steps (`link_begin`, "
-		       "`link_step`, `link_end` events; PHYSICS.md \"LINK\") between its exact events. No exact "
+		       "`link_step`, `link_end` events; docs/physics.md \"LINK\") between its exact events. No exact "
 		       "solution exists: the reference is libpool's result with those first-order steps "
 		       "(`reference_exact: false` in results.json), so `final pos vs libpool` is the engines' "
 		       "disagreement with libpool, and `vs other engine` the time-stepped engines' disagreement "
@@ -661,7 +661,7 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 			unexpressed.push_back(line);
 	}
 	if (!unexpressed.empty()) {
-		out << "## Models an engine cannot express\n\nThese scenarios select models (PHYSICS.md "
+		out << "## Models an engine cannot express\n\nThese scenarios select models (docs/physics.md "
 		       "\"Optional models\") that the engine does not have; it ran them with its own laws, so its "
 		       "errors there include the difference of the laws, not only its integration "
 		       "(`unsupported_models` in results.json):\n\n";

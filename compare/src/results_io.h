@@ -1,4 +1,4 @@
-// Writing the comparison: results.json (INTERFACES.md fields first), results.csv, the printed
+// Writing the comparison: results.json (docs/interfaces.md fields first), results.csv, the printed
 // table and report.md.
 #ifndef POOL_COMPARE_RESULTS_IO_H
 #define POOL_COMPARE_RESULTS_IO_H

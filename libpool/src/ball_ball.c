@@ -1,4 +1,4 @@
-// Ball-ball events: Petit's law between two balls (PHYSICS.md "Collisions", "Ball–ball").
+// Ball-ball events: Petit's law between two balls (docs/physics.md "Collisions", "Ball–ball").
 #include <math.h>
 
 #include "ball_friction.h"

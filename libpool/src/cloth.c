@@ -1,4 +1,4 @@
-// Ball-cloth events with airborne motion (PHYSICS.md "Ball–cloth", "Airborne"): a landing, or a
+// Ball-cloth events with airborne motion (docs/physics.md "Ball–cloth", "Airborne"): a landing, or a
 // ball pressed into the cloth by a strike, a cushion or another ball, is Petit's law with the
 // cloth as the obstacle; a ball that clears a rail leaves the table.
 #include <math.h>

@@ -1,4 +1,4 @@
-// Petit's collision law (PHYSICS.md "Collisions").
+// Petit's collision law (docs/physics.md "Collisions").
 #include "collision.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
 // Petit's impulse law with sticking, one function for ball-ball, ball-cushion and ball-cloth
-// (PHYSICS.md, "Collisions").
+// (docs/physics.md, "Collisions").
 #ifndef POOL_COLLISION_H
 #define POOL_COLLISION_H
 

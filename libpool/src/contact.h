@@ -1,4 +1,4 @@
-// When two bodies meet next, from their gap polynomial (PHYSICS.md "Predicting events").
+// When two bodies meet next, from their gap polynomial (docs/physics.md "Predicting events").
 //
 // Every contact prediction reduces to one question about a gap function f(tau), a polynomial
 // of degree <= 4 in the time tau from now that is positive while the bodies are apart, zero at

@@ -1,4 +1,4 @@
-// Ball-cushion and pocket events (PHYSICS.md "Ball–cushion", "Pocket"): Petit's law with the nose
+// Ball-cushion and pocket events (docs/physics.md "Ball–cushion", "Pocket"): Petit's law with the nose
 // as an immovable obstacle; a cushion contact inside a pocket mouth pockets the ball.
 #include <math.h>
 

@@ -1,4 +1,4 @@
-// The "mathavan2010" cushion model (PHYSICS.md "Optional models"): Mathavan, Jackson & Parkin,
+// The "mathavan2010" cushion model (docs/physics.md "Optional models"): Mathavan, Jackson & Parkin,
 // "A theoretical analysis of billiard ball dynamics under cushion impacts", Proc. IMechE Part C
 // 224 (2010). The cushion contact I (at the nose, e_cushion, mu_cushion) and the cloth contact C
 // (under the ball, mu_table) act together through the impact; the ball's velocities are

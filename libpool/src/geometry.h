@@ -1,5 +1,5 @@
 // Table geometry in one place: where a ball on the cloth meets each cushion nose, which pocket
-// mouth a contact falls in, and the contact normal (PHYSICS.md "Ball–cushion", "Pocket").
+// mouth a contact falls in, and the contact normal (docs/physics.md "Ball–cushion", "Pocket").
 #ifndef POOL_GEOMETRY_H
 #define POOL_GEOMETRY_H
 

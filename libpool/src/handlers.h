@@ -52,7 +52,7 @@ static inline void pool_take_out_of_play(pool_ball_state *s, pool_motion motion)
 }
 
 /// The motion state after an impulse or at placement (motion.c). Planar mode drops v_z and
-/// derives the on-cloth state (PHYSICS.md "Collisions"); airborne mode makes the ball airborne
+/// derives the on-cloth state (docs/physics.md "Collisions"); airborne mode makes the ball airborne
 /// when it is above the cloth or moves vertically faster than POOL_APPROACH_EPS (into the cloth:
 /// the ball_table contact follows at once, by the contact rule), else puts it on the cloth.
 void pool_motion_after_impulse(const pool_sim_def *def, pool_ball_state *s);

@@ -1,4 +1,4 @@
-// Lexicographic Lemke for the LINK step's LCP (lemke.h, PHYSICS.md "LINK").
+// Lexicographic Lemke for the LINK step's LCP (lemke.h, docs/physics.md "LINK").
 //
 // The system is  w - M z - e z0 = q,  w, z, z0 >= 0,  w'z = 0,  e = (1, ..., 1). A basis B holds
 // n of the 2n + 1 columns [I | A], A = [-M | -e]; the basic values are x_B = B^-1 q.

@@ -1,4 +1,4 @@
-// Lexicographic Lemke: the linear complementarity problem of a LINK step (PHYSICS.md "LINK").
+// Lexicographic Lemke: the linear complementarity problem of a LINK step (docs/physics.md "LINK").
 //   find z >= 0 with w = M z + q >= 0 and z'w = 0,  M dense n x n, row-major.
 // Lemke's complementary pivoting with the covering vector e = (1, ..., 1) terminates on a
 // copositive-plus M (the friction LCP's is) when degenerate ratio tests are broken
@@ -10,7 +10,7 @@
 
 #include <stddef.h>
 
-/// Relative complementarity residual above which a solve is reported as failed (PHYSICS.md:
+/// Relative complementarity residual above which a solve is reported as failed (docs/physics.md:
 /// "check the complementarity residual of every solve"): with w = M z + q computed from M and q,
 /// max_i max(-w_i, min(z_i, w_i)) divided by 1 + max_i (|q_i| + sum_j |M_ij z_j|), the size of
 /// the terms w is summed from (so a large z is not held to a tighter standard than rounding

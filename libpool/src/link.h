@@ -1,4 +1,4 @@
-// LINK clusters in the world (PHYSICS.md "LINK"). Where pairwise impulses break down (a ball
+// LINK clusters in the world (docs/physics.md "LINK"). Where pairwise impulses break down (a ball
 // pushing another, resting on two, pinned to a rail), the pair's collision history triggers a
 // cluster: the linker and every ball touching and closing on it, transitively; a ball that hits
 // a cluster's ball joins it. The cluster is one body of the schedule: its balls share one step

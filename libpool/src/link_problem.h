@@ -95,7 +95,7 @@ static inline double *directions(const link_problem *P, int i, int side) {
 }
 
 /// Index in x of contact i's direction j (0 the normal, 1 ... eta friction): friction first,
-/// then the normals, then the lambdas, as PHYSICS.md orders them.
+/// then the normals, then the lambdas, as docs/physics.md orders them.
 static inline size_t row_of(const link_problem *P, int i, int j) {
 	return (size_t)(j == 0 ? P->nc * P->eta + i : i * P->eta + j - 1);
 }

@@ -1,8 +1,8 @@
-// One LINK step of a cluster (PHYSICS.md "LINK"; the API and its rules are in link_step.h): the
+// One LINK step of a cluster (docs/physics.md "LINK"; the API and its rules are in link_step.h): the
 // contacts, the free velocities, the LCP by columns and Lemke; the warm start, which usually
 // solves the step without them, is link_warm.c's (the shared layout: link_problem.h).
 //
-// Unknowns, in PHYSICS.md's order, for nc contacts of eta friction directions each:
+// Unknowns, in docs/physics.md's order, for nc contacts of eta friction directions each:
 //   x = (dt beta [nc * eta], dt fn [nc], lambda [nc]),   size L = nc (eta + 2),
 // the impulses of the step along each contact's friction directions and normal, and lambda, the
 // magnitude of the post-step slip at a sliding contact. With W = J' M^-1 J over the stacked

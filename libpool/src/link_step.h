@@ -1,4 +1,4 @@
-// One LINK step of a cluster of balls in persistent contact (PHYSICS.md "LINK"): the velocity-
+// One LINK step of a cluster of balls in persistent contact (docs/physics.md "LINK"): the velocity-
 // level frictional-contact LCP of Anitescu & Potra / Stewart & Trinkle over the cluster's
 // ball-ball, ball-cloth and ball-cushion contacts, with a polyhedral friction cone of
 // POOL_LINK_ETA directions per contact, solved by lexicographic Lemke (lemke.h). The step turns
@@ -15,7 +15,7 @@
 
 #include "link_basis.h"
 
-/// Friction directions per contact (PHYSICS.md: eta = 14, in +/- pairs).
+/// Friction directions per contact (docs/physics.md: eta = 14, in +/- pairs).
 #define POOL_LINK_ETA 14
 
 /// Largest eta pool_link_step_with accepts (an internal study parameter: the friction-cone

@@ -1,4 +1,4 @@
-// Names of the optional models (INTERFACES.md, scenario "models") and their validation.
+// Names of the optional models (docs/interfaces.md, scenario "models") and their validation.
 #include "models.h"
 
 #include <string.h>

@@ -1,4 +1,4 @@
-// Closed-form ball motion on the cloth between events (PHYSICS.md, "Motion between events").
+// Closed-form ball motion on the cloth between events (docs/physics.md, "Motion between events").
 #ifndef POOL_MOTION_H
 #define POOL_MOTION_H
 

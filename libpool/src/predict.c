@@ -1,4 +1,4 @@
-// Event prediction (PHYSICS.md "Predicting events"): each contact's gap polynomial, handed to
+// Event prediction (docs/physics.md "Predicting events"): each contact's gap polynomial, handed to
 // the one rule for touching and approaching bodies (contact.c).
 #include "predict.h"
 

@@ -1,4 +1,4 @@
-// The schedule: each body's next event in the heap (PHYSICS.md "Event list"). After an event
+// The schedule: each body's next event in the heap (docs/physics.md "Event list"). After an event
 // only the bodies it involved, and those whose pending event involved them, are re-predicted.
 #ifndef POOL_SCHEDULE_H
 #define POOL_SCHEDULE_H

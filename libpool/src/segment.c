@@ -1,4 +1,4 @@
-// Motion segments: the closed forms of each motion state (PHYSICS.md "Motion between events").
+// Motion segments: the closed forms of each motion state (docs/physics.md "Motion between events").
 #include "segment.h"
 
 #include <math.h>

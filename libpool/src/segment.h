@@ -1,4 +1,4 @@
-// Motion segments: between two of its events a ball follows one closed-form motion (PHYSICS.md
+// Motion segments: between two of its events a ball follows one closed-form motion (docs/physics.md
 // "Motion between events"). One model per motion state gives the segment's acceleration, its
 // own end (the state change it leads to) and its spin; the centre follows one polynomial,
 //     r(tau) = r0 + v0 tau + a tau^2 / 2,   v(tau) = v0 + a tau,

@@ -1,4 +1,4 @@
-// The five-parameter cue strike (PHYSICS.md "Cue strike", Leckie & Greenspan impulse).
+// The five-parameter cue strike (docs/physics.md "Cue strike", Leckie & Greenspan impulse).
 #include "pool/strike.h"
 
 #include <math.h>

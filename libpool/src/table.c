@@ -1,4 +1,4 @@
-// Table presets, default parameters and their validation (PHYSICS.md defaults table).
+// Table presets, default parameters and their validation (docs/physics.md defaults table).
 #include "pool/table.h"
 
 #include <float.h>

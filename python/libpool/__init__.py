@@ -189,7 +189,7 @@ def _table_preset(name, arg):
 
 
 def default_params():
-    """PHYSICS.md defaults (pool_default_params); edit the fields, e.g. p.mu_slide = 0.25."""
+    """docs/physics.md defaults (pool_default_params); edit the fields, e.g. p.mu_slide = 0.25."""
     return _lib().pool_default_params()
 
 
@@ -246,7 +246,7 @@ def _rack_c(kind, gap, table, params):
     return out[:n]
 
 
-# ---- models (PHYSICS.md "Optional models") ------------------------------------------------------
+# ---- models (docs/physics.md "Optional models") ------------------------------------------------------
 
 # The keys of a scenario's "models" object, with the C functions naming their models.
 MODEL_KINDS = ("cushion", "ball_ball_friction", "squirt")
@@ -373,7 +373,7 @@ class Sim:
 
     table: a preset name ("wpa-9ft"...) or a TableDef; params: a Params (default_params());
     max_time in s, max_events; airborne is rejected by the library for now; models: the
-    optional models (PHYSICS.md "Optional models") as a dict of names, e.g. {"cushion":
+    optional models (docs/physics.md "Optional models") as a dict of names, e.g. {"cushion":
     "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "endmass"} (kinds not given keep
     the defaults), or a Models (make_models). Their parameters (throw_a, throw_b, throw_c,
     cue_end_mass) are in params.

@@ -51,7 +51,7 @@ class TableDef(_Struct):
 
 
 class Params(_Struct):
-    """pool_params: physical parameters, names and units as in PHYSICS.md."""
+    """pool_params: physical parameters, names and units as in docs/physics.md."""
     _fields_ = [(n, c_double) for n in (
         "g", "mu_slide", "mu_roll", "mu_spin", "mu_ball", "e_ball", "mu_cushion", "e_cushion",
         "mu_table", "e_table", "ball_radius", "ball_mass", "cue_mass",

@@ -1,5 +1,5 @@
 // Airborne motion in the comparison harness: the airborne closed form (flight, Petit's impact
-// with the cloth, the settling rule) against hand-derived values and VALIDATION.md 9, the
+// with the cloth, the settling rule) against hand-derived values and docs/validation.md 9, the
 // harness's handling of a scenario without a reference, and every built time-stepped engine
 // plugin on the `drop` and `hop` scenarios (landing times within c dt, shrinking with dt).
 // usage: test_airborne SCENARIO_DIR PLUGIN_DIR ENGINE...   (SCENARIO_DIR holds drop.json, hop.json)
@@ -30,7 +30,7 @@ namespace {
 
 using namespace compare_test;
 
-// Petit's cloth impact (PHYSICS.md "Collisions", n = k, N = e_table, mu = mu_table), by hand.
+// Petit's cloth impact (docs/physics.md "Collisions", n = k, N = e_table, mu = mu_table), by hand.
 void cloth_impact_matches_petit() {
 	const pool_params p = pool_default_params(); // e_table 0.5, mu_table 0.2
 	const double R = p.ball_radius, e = p.e_table, mu = p.mu_table;
@@ -61,7 +61,7 @@ void cloth_impact_matches_petit() {
 	}
 }
 
-// A 0.2 m drop: flight times, rebound heights e_table^2 of the previous (VALIDATION.md 9), the
+// A 0.2 m drop: flight times, rebound heights e_table^2 of the previous (docs/validation.md 9), the
 // settling rule (a rebound flying less than kSettleFlightTime settles), rest at the end.
 void drop_closed_form() {
 	auto s = load("drop");
@@ -99,7 +99,7 @@ void drop_closed_form() {
 		      "landing %zu at (%g, %g, %g)", k, ref->landings[k].pos.x(), ref->landings[k].pos.y(),
 		      ref->landings[k].pos.z());
 	}
-	// VALIDATION.md 9: each rebound rises to e_table^2 of the height it fell from.
+	// docs/validation.md 9: each rebound rises to e_table^2 of the height it fell from.
 	CHECK(ref->apexes.size() + 1 == ref->landings.size(), "%zu apexes for %zu landings", ref->apexes.size(),
 	      ref->landings.size());
 	double fell = z0 - R;

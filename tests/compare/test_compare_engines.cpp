@@ -1,4 +1,4 @@
-// Every built engine plugin against the closed forms (PHYSICS.md, VALIDATION.md, ENGINES.md) and
+// Every built engine plugin against the closed forms (docs/physics.md, docs/validation.md, docs/engines.md) and
 // the conservation laws of a frictionless elastic hit; also the harness's own closed form.
 // usage: test_compare_engines SCENARIO_DIR PLUGIN_DIR ENGINE...   (the engines that must exist)
 #include <cmath>
@@ -29,7 +29,7 @@ namespace {
 
 using namespace compare_test;
 
-// ENGINES.md: a 2 m/s pure slide rolls at 0.29125 s at 5/7 of the speed, stops at 14.85 s after 10.901 m.
+// docs/engines.md: a 2 m/s pure slide rolls at 0.29125 s at 5/7 of the speed, stops at 14.85 s after 10.901 m.
 void closed_form_matches_engines_md() {
 	auto s = load("slide");
 	if (!s)
@@ -52,7 +52,7 @@ void closed_form_matches_engines_md() {
 	CHECK(ref->at_rest, "at rest");
 }
 
-// VALIDATION.md 2: spin k = R w / v0 gives final speed v0 (5 + 2k) / 7 after 2 |1 - k| v0 / (7 mu g).
+// docs/validation.md 2: spin k = R w / v0 gives final speed v0 (5 + 2k) / 7 after 2 |1 - k| v0 / (7 mu g).
 void closed_form_matches_validation_2() {
 	for (const char *name : {"stun", "draw", "follow"}) {
 		auto s = load(name);

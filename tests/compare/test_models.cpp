@@ -1,4 +1,4 @@
-// The optional models (issue 12, PHYSICS.md "Optional models") in the comparison harness:
+// The optional models (issue 12, docs/physics.md "Optional models") in the comparison harness:
 // scenarios with "models" load (bad ones refused naming the field); the libpool plugin simulates
 // the scenario's models (its run equals the libpool reference of the same scenario, and differs
 // from the default models' one); the ODE and Bullet plugins say which models they cannot
@@ -58,7 +58,7 @@ void bad_models_are_refused() {
 	CHECK(error == "bad: models.spin: unknown field", "%s", error.c_str());
 }
 
-// Squirt turns an off-centre strike: the closed form (PHYSICS.md "Cue strike" without it) must
+// Squirt turns an off-centre strike: the closed form (docs/physics.md "Cue strike" without it) must
 // not be the reference then; a centred strike, or no squirt, keeps it.
 void closed_form_steps_aside_for_squirt() {
 	auto one_ball = [](const char *models, double a) {

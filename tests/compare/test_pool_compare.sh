@@ -99,7 +99,7 @@ else
 	expect 2 "built without LCM" --engines frozen --scenario "$SCEN/slide.json" --lcm-url memq://
 fi
 
-# The example plugin and libpool: every output, the INTERFACES.md fields, libpool exact on a closed form.
+# The example plugin and libpool: every output, the docs/interfaces.md fields, libpool exact on a closed form.
 if "$BIN" --engines frozen,libpool --scenario "$SCEN/slide.json" "$SCEN/cut30.json" --out "$WORK/run" \
 	--plugin-dir "$PLUGINS" >"$WORK/table" 2>"$WORK/err"; then
 	for f in results.json results.csv report.md slide.png cut30.png; do
@@ -124,7 +124,7 @@ assert by[("cut30", "libpool")]["reference"] == "libpool"
 fz = by[("slide", "frozen")]
 assert abs(fz["final_position_error"] - 10.901) < 1e-3, fz  # it never moved
 assert by[("cut30", "frozen")]["missed_collisions"] == 3, by[("cut30", "frozen")]  # ball pair + 2 cushions
-print("ok: results.json has the INTERFACES.md fields and the expected errors")
+print("ok: results.json has the docs/interfaces.md fields and the expected errors")
 PY
 else
 	fail "frozen,libpool run exited $?: $(cat "$WORK/err")"

@@ -3,7 +3,7 @@
 answer over --max-answer-bytes is replaced by the final states (or the error alone) with an error
 giving its size; SIGTERM during a long shot stops the server at once, answering the abandoned
 request, with exit 0 and the report; bad limit values and pool-sim --playback above 1000 Hz exit
-2; the default URL talks to clients on the plain INTERFACES.md URL. Every part takes a few seconds
+2; the default URL talks to clients on the plain docs/interfaces.md URL. Every part takes a few seconds
 at most."""
 import json
 import os
@@ -181,7 +181,7 @@ for value in ("1001", "1e9"):
             "pool-sim --playback %s: exit %r, %r" % (value, r.returncode, r.stderr))
 answers.close()
 
-# 5. Defaults interoperate with the plain INTERFACES.md URL: a server started with neither
+# 5. Defaults interoperate with the plain docs/interfaces.md URL: a server started with neither
 # --lcm-url nor LCM_DEFAULT_URL (its default adds only a receive-buffer size) answers a client and
 # a subscriber that use udpm://239.255.76.67:7667?ttl=0 as it stands.
 PLAIN = "udpm://239.255.76.67:7667?ttl=0"
@@ -192,7 +192,7 @@ answers = u.Collector(PLAIN, ["POOL_SHOT"])
 client = lcm.LCM(PLAIN)
 request(30, data["short"])
 s = wait_answer(30, 5)
-if u.check(s is not None, "default URL: no answer on the plain INTERFACES.md URL"):
+if u.check(s is not None, "default URL: no answer on the plain docs/interfaces.md URL"):
     u.check(s.error == "", "default URL: error %r" % s.error)
     u.compare_result(u.shot_json(s), want["short"], "default URL")
 report, _ = stop(server, "default URL")

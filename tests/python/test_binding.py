@@ -47,7 +47,7 @@ class StructLayout(unittest.TestCase):
 
 class ClosedForms(unittest.TestCase):
     def test_stun(self):
-        # VALIDATION.md 1: rolling starts at 2 v0/(7 mu g), after 12 v0^2/(49 mu g), at 5 v0/7.
+        # docs/validation.md 1: rolling starts at 2 v0/(7 mu g), after 12 v0^2/(49 mu g), at 5 v0/7.
         with stun_sim() as sim:
             p = sim.params
             ev = sim.events

@@ -4,7 +4,7 @@ Usage: python test_sensitivity.py --pool-sensitivity PATH --pool-batch PATH --wo
                                   [unittest arguments]
 
 Oracles, in order of independence:
-- closed form: a straight stun shot with noise on speed only. PHYSICS.md gives the ball speed of
+- closed form: a straight stun shot with noise on speed only. docs/physics.md gives the ball speed of
   a centre strike, v0 = 2 V / (1 + m/M), the sliding distance 12 v0^2 / (49 mu_slide g) until
   it rolls at 5/7 v0, and the rolling distance (5/7 v0)^2 / (2 mu_roll g): d(V) = k V^2. With V
   normal (V0, s^2), d is quadratic in a normal variable, so its mean k (V0^2 + s^2) and its
@@ -33,7 +33,7 @@ import unittest
 
 ARGS = None
 
-# PHYSICS.md defaults (the scenarios below do not change them).
+# docs/physics.md defaults (the scenarios below do not change them).
 R, M_BALL, M_CUE, G, MU_SLIDE, MU_ROLL = 0.028575, 0.17, 0.54, 9.81, 0.2, 0.01
 # Two-sided 99.9 % normal quantile: a correct tool fails one of the two checks of the stun test
 # with probability about 0.2 % over seeds; with the fixed seed the outcome is deterministic. The

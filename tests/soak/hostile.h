@@ -789,7 +789,7 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The shot as a pool-sim scenario (INTERFACES.md), replaying bit for bit.
+// The shot as a pool-sim scenario (docs/interfaces.md), replaying bit for bit.
 static inline void hs_print_scenario(FILE *f, const hs_shot *s) {
 	const pool_table_def *t = &s->def.table;
 	const pool_params *p = &s->def.params;
@@ -975,7 +975,7 @@ static inline int hs_index_of(const hs_shot *s, int32_t id) {
 	return -1;
 }
 
-// Pocket whose mouth holds a contact with `rail` at coordinate `along` (PHYSICS.md "Pocket").
+// Pocket whose mouth holds a contact with `rail` at coordinate `along` (docs/physics.md "Pocket").
 static inline pool_pocket hs_pocket_at(const pool_table_def *t, int rail, double along) {
 	const double corner = t->corner_mouth / sqrt(2.0), L = t->length, W = t->width;
 	if (rail <= POOL_RAIL_NORTH) {

@@ -218,7 +218,7 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
 
     def test_straight_shot_matches_closed_form(self):
         # Centre-ball level strike: v0 = 2 V / (1 + m/M), no spin, so the ball slides until
-        # t = 2 v0 / (7 mu_slide g) and has then covered v0 t - mu_slide g t^2 / 2 (PHYSICS.md).
+        # t = 2 v0 / (7 mu_slide g) and has then covered v0 t - mu_slide g t^2 / 2 (docs/physics.md).
         path = write("straight.json", straight_shot(1.0))
         r = sim(path)
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -743,7 +743,7 @@ def airborne_result(dt=0.01):
     """A synthetic libpool-result/1 with flights, as the library will write them once it flies
     balls (it does not yet): cue ball 0 jumps over ball 1 (15 cm at the top, right above it),
     lands, bounces twice (e_table 0.5) and slides to a stop; ball 2 hops off the north cushion
-    and leaves the table (state off_table, beyond the rail). Motions follow PHYSICS.md: parabolas
+    and leaves the table (state off_table, beyond the rail). Motions follow docs/physics.md: parabolas
     (g 9.81) in flight, constant deceleration on the cloth; samples every dt plus every event
     time, ending where a ball leaves the table."""
     g, W = 9.81, TABLE_9FT["width"]

@@ -1,4 +1,4 @@
-// The optional models of a scenario (INTERFACES.md "Scenario file", PHYSICS.md "Optional models")
+// The optional models of a scenario (docs/interfaces.md "Scenario file", docs/physics.md "Optional models")
 // in the tools: "models" and the four model parameters read into the pool_sim_def, refusals that
 // name the field, pool-rack's --model kinds (models_json.h), and the models written back into a
 // result so they round-trip through the parser.
@@ -76,7 +76,7 @@ static void test_model_parameters_are_read(void **state) {
 	assert_true(s.def.params.throw_c == 2.5);
 	assert_true(s.def.params.cue_end_mass == 0.09);
 	pool_scenario_free(&s);
-	// Missing ones take the library's defaults (PHYSICS.md: 9.951e-3, 0.108, 1.088).
+	// Missing ones take the library's defaults (docs/physics.md: 9.951e-3, 0.108, 1.088).
 	assert_int_equal(parse(DOC(""), &s, err, sizeof err), 0);
 	pool_params d = pool_default_params();
 	assert_true(s.def.params.throw_a == d.throw_a && s.def.params.throw_b == d.throw_b);
@@ -120,7 +120,7 @@ static void test_refusals_name_the_field(void **state) {
 	}
 }
 
-// The library's own range checks reach the user with the parameter named (PHYSICS.md: finite,
+// The library's own range checks reach the user with the parameter named (docs/physics.md: finite,
 // >= 0; cue_end_mass > 0).
 static void test_parameter_ranges_are_the_librarys(void **state) {
 	(void)state;

@@ -1,4 +1,4 @@
-// Random frictional-contact LCPs with the structure of a LINK step (PHYSICS.md "LINK"), for
+// Random frictional-contact LCPs with the structure of a LINK step (docs/physics.md "LINK"), for
 // test_lemke and tools/bench_lemke.c. Header only (static functions), C11 + libm.
 //
 // A cluster of `balls` balls (m = 0.17 kg, R = 0.028575 m, I = 2/5 m R^2) and K contacts, each

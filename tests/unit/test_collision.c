@@ -1,4 +1,4 @@
-// Petit's collision law (PHYSICS.md "Collisions") and VALIDATION.md items 5-8.
+// Petit's collision law (docs/physics.md "Collisions") and docs/validation.md items 5-8.
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -137,7 +137,7 @@ static void test_invariants(void **state) {
 		                                                           obstacle ? pool_v3(0, 0, 0) : w2);
 		double E0 = pool_motion_energy(&p, &a) + (obstacle ? 0 : pool_motion_energy(&p, &b));
 		pool_vec3 P0 = pool_v3_add(a.vel, b.vel);
-		// Slip before, to know the branch: Vc and the stick test of PHYSICS.md.
+		// Slip before, to know the branch: Vc and the stick test of docs/physics.md.
 		pool_vec3 dv = pool_v3_sub(a.vel, b.vel);
 		pool_vec3 vc = pool_v3_add(pool_v3_madd(dv, -pool_v3_dot(dv, n), n),
 		                           pool_v3_cross(n, pool_v3_scale(pool_v3_add(a.omega, b.omega), R)));
@@ -203,7 +203,7 @@ static void test_cushion_geometry(void **state) {
 // the north rail (c = sqrt(R^2 - (h - R)^2) / R, s = (h - R) / R, c^2 + s^2 = 1):
 // - a ball rolling straight in at v (w = (-v/R, 0, 0)) has Vc = v (1 + s) (0, s, -c) and
 //   P/m = (1 + e) c v; with the defaults it slips (s_test >= 0), so
-//   v_y' = v (1 - (1 + e) c (c + mu s)): 0.811 v with e = 0.85, mu = 0.2 (VALIDATION.md's
+//   v_y' = v (1 - (1 + e) c (c + mu s)): 0.811 v with e = 0.85, mu = 0.2 (docs/validation.md's
 //   measured ~0.9 is for a real, deforming cushion), v_z' = (1 + e) c v (mu c - s).
 // - a stun ball with side spin wz (w = (0, 0, wz)) has Vc = (-c R wz, s^2 v, -c s v); when it
 //   sticks, v' = v + (P/m) n - (2/7) Vc and w' = w + (5 / 7R) n x Vc

@@ -1,6 +1,6 @@
-// Airborne motion (PHYSICS.md "Airborne", "Ball–cloth", "Ball–cushion" in flight), against closed
+// Airborne motion (docs/physics.md "Airborne", "Ball–cloth", "Ball–cushion" in flight), against closed
 // forms computed here from the spec, never from the library: a dropped ball's impact times and
-// rebounds (VALIDATION.md 9: e_table^2 of the height), a throw's landing point, a jump strike's
+// rebounds (docs/validation.md 9: e_table^2 of the height), a throw's landing point, a jump strike's
 // rebound off the cloth and its landing, the nose-line contact of a flying ball (bisection on the
 // distance), leaving the table, a ball falling on a resting one (momentum, energy), a hop off a
 // cushion. Then
@@ -26,7 +26,7 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/// s, the settling threshold of PHYSICS.md's "too weak to fly longer than a threshold" as the
+/// s, the settling threshold of docs/physics.md's "too weak to fly longer than a threshold" as the
 /// manual states it (docs/library.md): a rebound flying less than 1 ms settles.
 #define SETTLE_FLIGHT 1e-3
 
@@ -61,7 +61,7 @@ static void add(pool_sim *sim, int32_t id, pool_vec3 pos, pool_vec3 vel, pool_ve
 		fail_msg("add %d: %s", (int)id, err.message);
 }
 
-// VALIDATION.md 9 through a whole drop: falling from z0, the ball meets the cloth at
+// docs/validation.md 9 through a whole drop: falling from z0, the ball meets the cloth at
 // t1 = sqrt(2 (z0 - R) / g) at v1 = g t1; each rebound leaves at e_table times the impact speed
 // (so reaches e_table^2 of the previous height) and lands 2 v / g later; the first rebound that
 // would fly less than SETTLE_FLIGHT settles the ball at rest on the cloth.
@@ -96,7 +96,7 @@ static void test_drop(void **state) {
 				}
 				assert_int_equal(a->motion, POOL_MOTION_AIRBORNE);
 				near_rel(a->vel.z, up, 1e-12);
-				// The rebound's apex: e^2 of the fall height before it (VALIDATION.md 9).
+				// The rebound's apex: e^2 of the fall height before it (docs/validation.md 9).
 				pool_ball_state top;
 				assert_int_equal(pool_sim_state_at(sim, t + up / g, &top), POOL_OK);
 				near_rel(top.pos.z - R, up * up / (2.0 * g), 1e-9);
@@ -132,7 +132,7 @@ static void test_throw_landing(void **state) {
 }
 
 // A jump strike (centre ball, elevation 60 deg, frictionless cloth): the strike's velocity
-// points into the cloth (v_z = -|v| sin theta, PHYSICS.md "Cue strike"); the immediate
+// points into the cloth (v_z = -|v| sin theta, docs/physics.md "Cue strike"); the immediate
 // ball_table impact at t = 0 reverses v_z times e_table and keeps the horizontal velocity; the
 // ball lands 2 v_z' / g later at x0 + vx 2 v_z' / g.
 static void test_jump_strike(void **state) {
@@ -255,7 +255,7 @@ static void test_falling_on_resting(void **state) {
 	pool_sim_destroy(sim);
 }
 
-// A hop off a cushion (PHYSICS.md "Ball–cushion": the nose above the centre presses the ball
+// A hop off a cushion (docs/physics.md "Ball–cushion": the nose above the centre presses the ball
 // into the cloth). A ball rolling straight into the north rail at v meets the nose with
 // c = sqrt(R^2 - (h - R)^2) / R and s = (h - R) / R; Petit's law (slipping, as test_collision
 // works out by hand) leaves it v_z' = (1 + e_cushion) c v (mu_cushion c - s) < 0, into the cloth.

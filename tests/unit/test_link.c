@@ -1,4 +1,4 @@
-// LINK in whole shots (PHYSICS.md "LINK", issue 11's scenes): where pairwise impulses break down
+// LINK in whole shots (docs/physics.md "LINK", issue 11's scenes): where pairwise impulses break down
 // (a ball pushing another, pinned to a rail by its spin, resting on two, landing on a resting
 // ball, a low-restitution line) the shot must end bounded, without interpenetration, with
 // energy never increasing beyond the step's stated tolerance, and where a closed form exists

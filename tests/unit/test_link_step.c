@@ -1,6 +1,6 @@
 // One LINK step (link_step.c), advanced over many steps as the world does (positions += dt v after
 // each step), against oracles independent of the LCP: the closed-form sliding parabola, rolling
-// deceleration and spin decay of PHYSICS.md's motion section (written out here from the spec),
+// deceleration and spin decay of docs/physics.md's motion section (written out here from the spec),
 // the statics of a ball resting on two (it stands when mu_ball >= 1/(2 + sqrt 3), collapses
 // below), conservation of horizontal momentum on a frictionless cloth, energy that never
 // increases, no interpenetration; the failing allocator; bad input.

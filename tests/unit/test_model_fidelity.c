@@ -1,4 +1,4 @@
-// The optional models of issue 12 (PHYSICS.md "Optional models") against published figures and
+// The optional models of issue 12 (docs/physics.md "Optional models") against published figures and
 // independent calculations: Mathavan 2010's cushion, Alciatore's speed-dependent ball-ball
 // friction (throw, TP A.14) and the cue's end-mass squirt (TP A.31); invariants of every model
 // (energy never increases, momentum in ball-ball events, random shots with every model on).

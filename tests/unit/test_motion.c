@@ -1,4 +1,4 @@
-// Closed-form motion on the cloth against VALIDATION.md section 1 (items 1-3) and PHYSICS.md.
+// Closed-form motion on the cloth against docs/validation.md section 1 (items 1-3) and docs/physics.md.
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

@@ -2,7 +2,7 @@
 // random polynomials with known roots, random grazing ball-pair contacts (double roots), the fast
 // path's safety checks and polish (called directly), and pool_quartic_smallest_root_in.
 //
-// Accuracy criterion (QUARTIC.md): a root r is right when |x - r| <= 1e3 kappa u |r|, with
+// Accuracy criterion (docs/quartic.md): a root r is right when |x - r| <= 1e3 kappa u |r|, with
 // u = 2^-53 and kappa = sum |a_i| |r|^i / (|r| |p'(r)|), the reference being the roots of the
 // rounded (double) coefficients. Ill-conditioned cases (kappa u > 1e-9, or a complex pair with
 // |Im| / |z| < 1e-3) only have to give a sane answer; they are reported, not judged.
@@ -252,7 +252,7 @@ static int tq_solve(double a4, double a3, double a2, double a1, double a0, doubl
 
 // --- Published hard cases ---
 
-// QUARTIC.md's criterion, and nothing else, decides which cases are judged: a real root with
+// docs/quartic.md's criterion, and nothing else, decides which cases are judged: a real root with
 // kappa u > 1e-9 (or no condition number: a multiple root, null in the file), or a complex pair
 // with |Im| / |z| < 1e-3.
 static bool tq_case_ill_by_kappa(const tq_case *tc) {
@@ -273,7 +273,7 @@ static void test_public_cases(void **state) {
 	(void)state;
 	tq_case cases[64];
 	int n = tq_load_cases(cases, 64);
-	// The file as QUARTIC.md describes it: 37 cases, of which the criterion leaves 18 to judge;
+	// The file as docs/quartic.md describes it: 37 cases, of which the criterion leaves 18 to judge;
 	// 10 are ill by kappa, 13 by a nearly real complex pair (4 by both). A change of the data or of
 	// the criterion shows up here instead of silently judging fewer cases.
 	assert_int_equal(n, 37);
@@ -1029,7 +1029,7 @@ static void test_fast_path_declines(void **state) {
 // path's 2^60 root-scale limit), a moderate one M of the same sign (0.1 .. 300), and two tiny real
 // roots or a tiny complex pair (1e-9 .. 1e-5). Ferrari's factors then carry rounding errors of the
 // scale of H M in the tiny roots' factor: unpolished, those roots are off by up to ~1e9 kappa u;
-// the Newton polish on p brings every root within QUARTIC.md's 1e3 kappa u. Plus general random
+// the Newton polish on p brings every root within docs/quartic.md's 1e3 kappa u. Plus general random
 // products (as test_random_products). Every accepted answer is judged (count and accuracy) against
 // the roots of the rounded coefficients; the fast path must answer the well-conditioned ones.
 // Catches: the polish removed. Not caught: keeping the polish but ignoring its verdict (its reject
@@ -1171,7 +1171,7 @@ static void test_smallest_root_in(void **state) {
 // The reported case: roots 1.0786e-5, 1.0786e-3, 3.2497e17 and 2.6425e88 (89 orders of
 // magnitude). The isolation solver returned 6.52e27 for the third root: Halley's iteration from
 // the far end of the bracket [2.2e17, 2.0e88], where one term of p dominates, shrinks x by a
-// constant factor per step and ran out of iterations. Every root must be within QUARTIC.md's
+// constant factor per step and ran out of iterations. Every root must be within docs/quartic.md's
 // 1e3 kappa u of the roots of the (rounded) coefficients, and the window solver must find each.
 static void test_wide_spread_reproducer(void **state) {
 	(void)state;
@@ -1244,7 +1244,7 @@ static int tq_spread_case(int iter, double span, double lo10, double hi10, doubl
 // range (and leading coefficients 1e-20 .. 1e20), then over up to 600 orders around 1 (every
 // root magnitude the double range allows, coefficients up to its limits). Reference: the known
 // roots polished by Newton in long double on the rounded coefficients (tq_reference). Judged by
-// QUARTIC.md's criterion: every well-conditioned case (no root with kappa u > 1e-9, no pair
+// docs/quartic.md's criterion: every well-conditioned case (no root with kappa u > 1e-9, no pair
 // within 1e-3 of the real axis) has the right number of real roots, each within 1e3 kappa u (the
 // largest error seen is about 3 kappa u), and the window solver finds each root alone in
 // [r / 2, 2 r]. Without the fixes: wrong roots from about 60 orders on (the iteration running

@@ -1,4 +1,4 @@
-// The cue strike (PHYSICS.md "Cue strike", VALIDATION.md item 4).
+// The cue strike (docs/physics.md "Cue strike", docs/validation.md item 4).
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

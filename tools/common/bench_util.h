@@ -1,5 +1,5 @@
 // What every benchmark tool needs besides the thing it measures: a clock, the median and minimum
-// of its runs, and a description of the machine (DESIGN.md: speed is reported as median and
+// of its runs, and a description of the machine (docs/design.md: speed is reported as median and
 // minimum of several runs plus the machine). Only libc: links into any benchmark.
 #ifndef POOL_TOOLS_BENCH_UTIL_H
 #define POOL_TOOLS_BENCH_UTIL_H

@@ -1,5 +1,5 @@
 // Command-line plumbing shared by the commands (pool-sim, pool-rack, pool-batch, pool-sensitivity): exit statuses, usage errors, number
-// options and writing the output document (INTERFACES.md: exit 2 names the offending option).
+// options and writing the output document (docs/interfaces.md: exit 2 names the offending option).
 #ifndef POOL_TOOLS_CLI_H
 #define POOL_TOOLS_CLI_H
 

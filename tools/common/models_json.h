@@ -1,4 +1,4 @@
-// The "models" object of scenario and result files (INTERFACES.md, PHYSICS.md "Optional
+// The "models" object of scenario and result files (docs/interfaces.md, docs/physics.md "Optional
 // models"): the kinds of model and their names, for the scenario parser, pool-rack --model and
 // every tool that writes a scenario or a result back, so the models a shot was simulated with
 // travel with it. The names themselves are the library's (pool_cushion_model_name...).

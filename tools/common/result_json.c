@@ -1,4 +1,4 @@
-// The libpool-result/1 writer (INTERFACES.md): events with the after-states of their balls,
+// The libpool-result/1 writer (docs/interfaces.md): events with the after-states of their balls,
 // every ball at the end, statistics, and optionally the trajectories sampled for plots.
 #include "json_writer.h"
 #include "models_json.h"
@@ -224,7 +224,7 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	int count = 0;
 	const pool_event *events = pool_sim_events(sim, &count);
 	int balls = pool_sim_ball_count(sim);
-	// "final" is every ball at rest, or at max_time when the shot was cut there (INTERFACES.md).
+	// "final" is every ball at rest, or at max_time when the shot was cut there (docs/interfaces.md).
 	double end = pool_sim_end_time(sim);
 	pool_ball_state *final_states = calloc(balls > 0 ? (size_t)balls : 1, sizeof *final_states);
 	if (!final_states)

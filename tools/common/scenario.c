@@ -1,4 +1,4 @@
-// Parsing and validation of libpool-scenario/1 documents (INTERFACES.md). The JSON layer checks
+// Parsing and validation of libpool-scenario/1 documents (docs/interfaces.md). The JSON layer checks
 // syntax, types, unknown fields and number ranges; the physical rules (table and parameter
 // ranges, overlaps, off-table balls, strike limits) are libpool's own validators, whose messages
 // already name the field, so the rules live in one place.
@@ -254,7 +254,7 @@ static int parse_options(parse_ctx *ctx, json_t *options, pool_sim_def *def) {
 	return 0;
 }
 
-// "models" (PHYSICS.md "Optional models"): each key a kind, each value a model name the library
+// "models" (docs/physics.md "Optional models"): each key a kind, each value a model name the library
 // knows (models_json.c).
 static int parse_models(parse_ctx *ctx, json_t *models, pool_models *out) {
 	if (!models)

@@ -28,7 +28,7 @@ extern "C" {
 #define POOL_LCM_CHANNEL_STATE "POOL_STATE"
 /// Channel of engine comparison results (bench_result_t).
 #define POOL_LCM_CHANNEL_BENCH "POOL_BENCH"
-/// URL used when neither --lcm-url nor LCM_DEFAULT_URL is given: INTERFACES.md's group, port and
+/// URL used when neither --lcm-url nor LCM_DEFAULT_URL is given: docs/interfaces.md's group, port and
 /// ttl, plus a receive buffer large enough for multi-megabyte shots (README, "Message size").
 #define POOL_LCM_DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
 

@@ -65,7 +65,7 @@ static void table(svg *g, const pool_table_def *t) {
 	    py(g, W + rw), (L + 2 * rw) * SVG_SCALE, (W + 2 * rw) * SVG_SCALE);
 	put(g, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"#1d7a46\"/>\n", px(0),
 	    py(g, W), L * SVG_SCALE, W * SVG_SCALE);
-	// Pocket mouths (PHYSICS.md): a corner mouth opens the last corner_mouth/sqrt(2) of each of
+	// Pocket mouths (docs/physics.md): a corner mouth opens the last corner_mouth/sqrt(2) of each of
 	// its rail lines, a side mouth the side_mouth-wide interval centred at x = L/2.
 	double c = t->corner_mouth / sqrt(2.0), s = t->side_mouth;
 	const char *mouth = "stroke=\"black\" stroke-width=\"4\"";

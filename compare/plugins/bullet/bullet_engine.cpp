@@ -1,4 +1,4 @@
-// The Bullet model of a pool shot (see bullet_engine.h and docs/ENGINES.md for the traps).
+// The Bullet model of a pool shot (see bullet_engine.h and docs/engines.md for the traps).
 #include "bullet_engine.h"
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
@@ -116,7 +116,7 @@ Settings default_settings() {
 	// 1e-5, shrinking with dt).
 	s.airborne_capsule_radius = 1e-4;
 	s.breaking_threshold = 1e-9;
-	// ENGINES.md: on below 1e-4 m/s, off above 1e-2 m/s. Bullet's friction brings the slip to
+	// docs/engines.md: on below 1e-4 m/s, off above 1e-2 m/s. Bullet's friction brings the slip to
 	// zero within the step that ends sliding, so 1e-4 sees the transition at once.
 	s.roll_on_slip = 1e-4;
 	s.roll_off_slip = 1e-2;
@@ -232,7 +232,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	// Penetration is removed by split impulse (pseudo-velocities that move positions but never
 	// add kinetic energy) at every depth: with the default threshold (-0.04 m) shallow
 	// penetrations are pushed out through the real velocity, and a 10 m/s head-on hit with
-	// e = 1 gave the object ball up to 0.95 m/s extra (ENGINES.md).
+	// e = 1 gave the object ball up to 0.95 m/s extra (docs/engines.md).
 	info.m_splitImpulse = 1;
 	info.m_splitImpulsePenetrationThreshold = 0.0;
 	// Restitution at every approach speed (the default 0.2 m/s kills slow kisses). A ball
@@ -327,7 +327,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 		body->setSleepingThresholds(0.0, 0.0);
 		// A sphere's inertia is isotropic: the gyroscopic term is zero, skip its solve.
 		body->setFlags(body->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
-		// CCD stays off (motion threshold 0): with it, restitution came out wrong (ENGINES.md).
+		// CCD stays off (motion threshold 0): with it, restitution came out wrong (docs/engines.md).
 		body->setCcdMotionThreshold(0.0);
 		ball->material = Material{kMaterialMagic, kBall, i, this};
 		body->setUserPointer(&ball->material);
@@ -365,7 +365,7 @@ bool Engine::on_cloth(const Ball &ball) const {
 void Engine::apply_torques() {
 	const double R = params_.ball_radius, m = params_.ball_mass, g = params_.g;
 	const double roll_decel = params_.mu_roll * g;
-	const double spin_decel = 2.5 * params_.mu_spin * g / R; // rad/s^2, PHYSICS.md
+	const double spin_decel = 2.5 * params_.mu_spin * g / R; // rad/s^2, docs/physics.md
 	const double inertia = 0.4 * m * R * R;
 	for (auto &b : balls_) {
 		if (!b->active || !on_cloth(*b))
@@ -424,7 +424,7 @@ bool Engine::step() {
 }
 
 void Engine::before_solve() {
-	// libpool's collisions are instantaneous impulses between two bodies (PHYSICS.md): nothing
+	// libpool's collisions are instantaneous impulses between two bodies (docs/physics.md): nothing
 	// else acts during them, and in planar mode the vertical velocity they leave is dropped.
 	// Bullet solves all contacts of a step together, so a collision that presses a ball into
 	// the cloth (a cushion's impulse points down; ball-ball friction has a vertical part) also

@@ -71,7 +71,7 @@ double kinetic(const std::vector<pool_engine_ball> &balls) {
 	return e;
 }
 
-// --- Pure slide: 2 m/s, no spin (PHYSICS.md closed form) -------------------------------------
+// --- Pure slide: 2 m/s, no spin (docs/physics.md closed form) -------------------------------------
 
 struct SlideErrors {
 	double t_roll, v_roll, t_stop, distance;
@@ -262,7 +262,7 @@ void test_cushion_and_pocket() {
 	CHECK(st.max_penetration < 1.5e-3, "penetration %.3g m", st.max_penetration);
 }
 
-// --- Cushion impulse against Petit's law (PHYSICS.md) -----------------------------------------
+// --- Cushion impulse against Petit's law (docs/physics.md) -----------------------------------------
 
 // A ball rolling (with side spin) into the south cushion: the rebound one step after the
 // contact must be Petit's impulse with libpool's nose normal, v_z dropped (planar mode).

@@ -1,5 +1,5 @@
 // Which pairs of objects touch, so that a time-stepped engine reports a collision only when a
-// contact begins (ENGINES.md): a pair found touching in a step's contact pass that was not
+// contact begins (docs/engines.md): a pair found touching in a step's contact pass that was not
 // touching before is a new contact; a pair stops touching only once it is not found and the
 // engine's own separation test says it is apart (a resting contact that flickers is one
 // contact). Memory is O(contacts), not O(pairs).

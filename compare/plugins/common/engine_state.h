@@ -18,7 +18,7 @@
 
 namespace pool_plugin {
 
-/// Rolling resistance acts only while rolling (ENGINES.md): a ball starts rolling when its slip
+/// Rolling resistance acts only while rolling (docs/engines.md): a ball starts rolling when its slip
 /// falls below on_slip and stops only when it rises above off_slip again, so rounding near the
 /// threshold cannot toggle it. Returns the new rolling flag.
 inline bool roll_hysteresis(bool rolling, double slip, double on_slip, double off_slip) {

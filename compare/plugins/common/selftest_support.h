@@ -17,7 +17,7 @@ const pool_engine_api *load_plugin(const char *path, const char *name);
 /// printf into a std::string (scenario documents, check labels).
 std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
 
-/// Petit's impulse law (PHYSICS.md) for a ball of radius R hitting an immovable obstacle whose
+/// Petit's impulse law (docs/physics.md) for a ball of radius R hitting an immovable obstacle whose
 /// unit normal n points from the contact towards the ball centre, restitution e and friction
 /// mu: v and w become the velocities after the impact (no v_z is dropped here).
 void petit_impact(const double n[3], double e, double mu, double R, double v[3], double w[3]);

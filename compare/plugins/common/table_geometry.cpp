@@ -46,7 +46,7 @@ TableGeometry make_table_geometry(const pool_table_def &table, double radius,
 	g.capsule_radius = layout.capsule_radius;
 	const double R = radius, h = table.cushion_height, rc = layout.capsule_radius;
 	// On the cloth the ball touches the nose line when its centre is d0 from it horizontally
-	// (PHYSICS.md); the unit normal from the nose point to the centre is n0 = (d0, R - h) / R
+	// (docs/physics.md); the unit normal from the nose point to the centre is n0 = (d0, R - h) / R
 	// in (inward horizontal, up). The capsule axis sits rc behind the nose along -n0, so the
 	// capsule surface passes through the nose point with the same normal there:
 	// |centre - axis| = R + rc at that contact.

@@ -1,7 +1,7 @@
 // Geometry of the pool table as the time-stepped engine plugins build it: libpool's cushion nose
 // lines turned into capsules that touch a ball on the cloth exactly where the line does, the
 // pocket mouths (gaps between the capsules), and which pocket a ball crossing a rail line falls
-// into (PHYSICS.md, "Ball-cushion" and "Pocket").
+// into (docs/physics.md, "Ball-cushion" and "Pocket").
 #ifndef POOL_PLUGIN_TABLE_GEOMETRY_H
 #define POOL_PLUGIN_TABLE_GEOMETRY_H
 

@@ -226,7 +226,7 @@ static const char *last_error(void *engine) {
 static const pool_engine_api api = {
 	.abi_version = POOL_ENGINE_ABI_VERSION,
 	.name = "libpool",
-	.description = "libpool event-driven, exact closed-form motion between events (PHYSICS.md); "
+	.description = "libpool event-driven, exact closed-form motion between events (docs/physics.md); "
 	               "rigid cushions, point contacts, no air drag or swerve (squirt with models.squirt "
 	               "endmass); simultaneous contacts "
 	               "are resolved one after the other (pairwise, in a fixed order: one admissible outcome)",

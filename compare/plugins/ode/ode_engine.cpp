@@ -65,7 +65,7 @@ Settings default_settings() {
 	// 0.1 mm (2.6 mm at dt 1e-5, shrinking with dt). A ball then passes a capsule's axis at
 	// v dt > R + rc instead of 2R; the off-table rule (the centre past the rail line) acts first.
 	s.airborne_capsule_radius = 1e-4;
-	// Rolling resistance only while rolling (ENGINES.md): on below 1e-4 m/s of slip, off again
+	// Rolling resistance only while rolling (docs/engines.md): on below 1e-4 m/s of slip, off again
 	// above 1e-2 m/s. ODE's sticking friction makes the slip exactly 0 (to rounding) in the step
 	// rolling starts, so 1e-4 catches that step; the gap to 1e-2 keeps rounding from toggling.
 	s.roll_on_slip = 1e-4;

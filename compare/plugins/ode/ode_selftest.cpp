@@ -1,4 +1,4 @@
-// Self-test of the ODE plugin against closed forms (PHYSICS.md, ENGINES.md), through the real
+// Self-test of the ODE plugin against closed forms (docs/physics.md, docs/engines.md), through the real
 // module and its C ABI:  ode_selftest PATH/libpool_engine_ode.so [--bench]
 // --bench prints the cost per step for 1 and 16 balls (median and minimum of 5 runs) instead.
 #include <sys/utsname.h>
@@ -22,7 +22,7 @@ using pool_plugin::fmt;
 const pool_engine_api *api = nullptr;
 int failures = 0;
 
-// Defaults of PHYSICS.md, which the scenarios below rely on.
+// Defaults of docs/physics.md, which the scenarios below rely on.
 const double kG = 9.81, kMuSlide = 0.2, kMuRoll = 0.01, kMuSpin = 0.0127, kR = 0.028575;
 const double kPi = 3.14159265358979323846;
 

@@ -22,7 +22,7 @@ typedef enum pool_motion {
 	POOL_MOTION_OFF_TABLE = 7,  ///< left the table; no longer simulated
 } pool_motion;
 
-/// Lower-case name as in INTERFACES.md ("stationary", "sliding", ...).
+/// Lower-case name as in docs/interfaces.md ("stationary", "sliding", ...).
 POOL_API const char *pool_motion_name(pool_motion motion);
 
 /// Parses a name from pool_motion_name; returns -1 when unknown.

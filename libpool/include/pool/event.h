@@ -1,4 +1,4 @@
-// libpool: events of a shot (INTERFACES.md, result file).
+// libpool: events of a shot (docs/interfaces.md, result file).
 #ifndef POOL_EVENT_H
 #define POOL_EVENT_H
 
@@ -24,7 +24,7 @@ typedef enum pool_event_type {
 	POOL_EVENT_LINK_END = 11,    ///< a cluster dissolves ("link_end")
 } pool_event_type;
 
-/// Name as in INTERFACES.md ("ball_ball", ...).
+/// Name as in docs/interfaces.md ("ball_ball", ...).
 POOL_API const char *pool_event_type_name(pool_event_type type);
 
 /// Rails (cushion noses). South is y = 0, north y = W, west x = 0, east x = L.

@@ -1,4 +1,4 @@
-// libpool: LINK, persistent contact as a cluster advanced by LCP steps (PHYSICS.md "LINK";
+// libpool: LINK, persistent contact as a cluster advanced by LCP steps (docs/physics.md "LINK";
 // docs/library.md "Persistent contact").
 #ifndef POOL_LINK_H
 #define POOL_LINK_H

@@ -20,7 +20,7 @@ typedef struct pool_sim pool_sim;
 /// Overlap below which two balls count as touching, not interpenetrating (rounding of racks).
 #define POOL_TOUCH_TOLERANCE 1e-9
 
-/// Cushion law (PHYSICS.md "Cushion" and "Optional models").
+/// Cushion law (docs/physics.md "Cushion" and "Optional models").
 typedef enum pool_cushion_model {
 	POOL_CUSHION_PETIT = 0,       ///< "petit": Petit's 3D impulse (the default)
 	POOL_CUSHION_MATHAVAN2010 = 1 ///< "mathavan2010": cushion and cloth contacts through the impact
@@ -45,7 +45,7 @@ typedef struct pool_models {
 	pool_squirt_model squirt;
 } pool_models;
 
-/// Model names as in INTERFACES.md ("petit", "mathavan2010", "constant", "alciatore", "none",
+/// Model names as in docs/interfaces.md ("petit", "mathavan2010", "constant", "alciatore", "none",
 /// "endmass"); "unknown" for a value out of range.
 POOL_API const char *pool_cushion_model_name(pool_cushion_model model);
 POOL_API const char *pool_ball_friction_model_name(pool_ball_friction_model model);
@@ -67,7 +67,7 @@ typedef struct pool_sim_def {
 	pool_models models;       ///< optional models; zero means the default laws
 } pool_sim_def;
 
-/// WPA 9 ft table, PHYSICS.md parameters, planar, max_time 120 s, max_events 100000, default models.
+/// WPA 9 ft table, docs/physics.md parameters, planar, max_time 120 s, max_events 100000, default models.
 POOL_API pool_sim_def pool_default_sim_def(void);
 
 /// Why the shot ended (or POOL_STOP_NONE while it runs).

@@ -1,4 +1,4 @@
-// libpool: the five-parameter cue strike (PHYSICS.md, "Cue strike").
+// libpool: the five-parameter cue strike (docs/physics.md, "Cue strike").
 #ifndef POOL_STRIKE_H
 #define POOL_STRIKE_H
 

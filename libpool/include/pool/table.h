@@ -1,4 +1,4 @@
-// libpool: table geometry and physical parameters (PHYSICS.md, "Frame, units, defaults").
+// libpool: table geometry and physical parameters (docs/physics.md, "Frame, units, defaults").
 #ifndef POOL_TABLE_H
 #define POOL_TABLE_H
 
@@ -24,7 +24,7 @@ POOL_API pool_table_def pool_default_table_def(void);
 /// Table preset by name: "wpa-9ft", "wpa-8ft", "wpa-7ft".
 POOL_API pool_result pool_table_preset(const char *name, pool_table_def *table);
 
-/// Physical parameters, names and defaults as in PHYSICS.md.
+/// Physical parameters, names and defaults as in docs/physics.md.
 typedef struct pool_params {
 	double g;           ///< m/s^2, gravity
 	double mu_slide;    ///< 1, cloth sliding friction
@@ -39,18 +39,18 @@ typedef struct pool_params {
 	double ball_radius; ///< m
 	double ball_mass;   ///< kg
 	double cue_mass;    ///< kg
-	// Parameters of the optional models (PHYSICS.md "Optional models"; used only when selected).
+	// Parameters of the optional models (docs/physics.md "Optional models"; used only when selected).
 	double throw_a;      ///< 1, ball_ball_friction "alciatore": mu(v) = throw_a + throw_b exp(-throw_c v)
 	double throw_b;      ///< 1, see throw_a
 	double throw_c;      ///< s/m, see throw_a
 	double cue_end_mass; ///< kg, squirt "endmass": the cue's effective end mass (Alciatore TP A.31)
 } pool_params;
 
-/// PHYSICS.md defaults.
+/// docs/physics.md defaults.
 POOL_API pool_params pool_default_params(void);
 
 /// Horizontal distance (m) from a nose line at which a ball of radius R on the cloth touches it:
-/// sqrt(R^2 - (h - R)^2) (VALIDATION.md 8). The contact lines of the playing area are this far
+/// sqrt(R^2 - (h - R)^2) (docs/validation.md 8). The contact lines of the playing area are this far
 /// inside the nose lines.
 POOL_API double pool_table_contact_distance(const pool_table_def *table, double ball_radius);
 
