@@ -1,6 +1,8 @@
 // A growing text buffer (see text_buffer.h).
 #include "text_buffer.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,4 +24,18 @@ void pool_text_append(pool_text_buffer *b, const char *text, size_t n) {
 	memcpy(b->data + b->length, text, n);
 	b->length += n;
 	b->data[b->length] = '\0';
+}
+
+void pool_text_vappendf(pool_text_buffer *b, const char *format, va_list args) {
+	char line[1024];
+	int n = vsnprintf(line, sizeof line, format, args);
+	if (n > 0)
+		pool_text_append(b, line, (size_t)n < sizeof line ? (size_t)n : sizeof line - 1);
+}
+
+void pool_text_appendf(pool_text_buffer *b, const char *format, ...) {
+	va_list args;
+	va_start(args, format);
+	pool_text_vappendf(b, format, args);
+	va_end(args);
 }

@@ -1,0 +1,211 @@
+// The fit: several starts of the least squares (least_squares.c), the best minimum, its standard
+// errors, and 95 % intervals that are honest where the tracks' cost is not a parabola (profile.c)
+// or has other minima that fit as well.
+#define _POSIX_C_SOURCE 200809L
+#include <gsl/gsl_blas.h>
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+#include "fit.h"
+#include "least_squares.h"
+#include "profile.h"
+
+// The first horizon (s of tracks): about the time a shot's first collision takes, so the first
+// stage sees the struck ball alone and fixes its direction and speed. Each stage sees this much
+// more: 1.3 keeps each new stretch short enough that a spin the earlier stages could not see (a
+// side spin shows only at a cushion) is found before the balls' paths diverge; doubling the
+// horizon left 1 trial in 10 in another minimum (docs/commands.md "pool-fit").
+#define FIT_FIRST_HORIZON 0.25
+#define FIT_HORIZON_GROWTH 1.3
+// Iterations of a stage before the last: it only has to bring the iterate near enough for the
+// next, longer one.
+#define FIT_STAGE_ITERATIONS 100
+// Starts near the best minimum: tip offsets (and t0, theta, by the same share of their scales)
+// moved by this (m), phi by this sd (rad, 0.05 degree), the other parameters by this relative sd.
+#define FIT_POLISH_TIP 5e-4
+#define FIT_POLISH_PHI 8.7e-4
+#define FIT_POLISH_RELATIVE 0.01
+
+static double now_s(void) {
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/// A standard normal deviate from a splitmix64 stream (the random starts need no more).
+static double normal(uint64_t *state) {
+	double u[2];
+	for (int k = 0; k < 2; ++k) {
+		uint64_t z = (*state += 0x9E3779B97F4A7C15ULL);
+		z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+		z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+		z ^= z >> 31;
+		u[k] = ((double)(z >> 11) + 0.5) / 9007199254740992.0;
+	}
+	return sqrt(-2.0 * log(u[0])) * cos(6.283185307179586 * u[1]);
+}
+
+/// The given starting points: the problem's start (each shot's scenario strike, or its track
+/// guess), and the track guesses where a scenario gave a strike too. Returns how many.
+static int given_starts(const fit_problem *pb, double *starts) {
+	fit_start_vector(pb, starts);
+	bool differs = false;
+	double *second = starts + pb->p;
+	memcpy(second, starts, (size_t)pb->p * sizeof *second);
+	for (int s = 0; s < pb->shot_count; ++s) {
+		const fit_shot *sh = &pb->shots[s];
+		double phi, speed;
+		if (!sh->scenario.has_strike || !fit_guess_from_tracks(sh, &sh->scenario.def.params, &phi, &speed))
+			continue;
+		int j = pb->table_free + s * pb->shot_free;
+		for (int k = 0; k < FIT_SHOT_PARAMS; ++k) {
+			if (!pb->free_shot[k])
+				continue;
+			if (k == FIT_PHI && phi != second[j])
+				second[j] = phi, differs = true;
+			if (k == FIT_SPEED) { // the vector holds the launch speed (fit.h)
+				const pool_strike *st = &sh->scenario.strike;
+				double u = speed * fit_launch_gain(&sh->scenario.def.params, st->theta, st->a, st->b);
+				if (u != second[j])
+					second[j] = u, differs = true;
+			}
+			++j;
+		}
+	}
+	return 1 + differs;
+}
+
+/// Start k after the given ones, near the best minimum x: the tip offsets of every shot moved by
+/// +-FIT_POLISH_TIP (a up, a down, b up, b down), then random steps of every parameter. A minimum
+/// over all the tracks can have neighbours that fit as well (a side spin that dies just before a
+/// collision or just after it); these starts look for them.
+static void polish_start(const fit_problem *pb, const double *x, int k, uint64_t *rng, double *out) {
+	memcpy(out, x, (size_t)pb->p * sizeof *out);
+	for (int j = 0; j < pb->p; ++j) {
+		int shot, index;
+		const fit_param_info *info = fit_param_of(pb, j, &shot, &index);
+		if (k < 4) {
+			if (shot >= 0 && index == (k < 2 ? FIT_A : FIT_B))
+				out[j] += k % 2 ? -FIT_POLISH_TIP : FIT_POLISH_TIP;
+			continue;
+		}
+		double z = normal(rng);
+		if (shot >= 0 && index == FIT_PHI)
+			out[j] += FIT_POLISH_PHI * z;
+		else if (shot >= 0 && (index == FIT_A || index == FIT_B || index == FIT_T0 || index == FIT_THETA))
+			out[j] += FIT_POLISH_TIP / 1e-3 * info->scale * z;
+		else
+			out[j] *= exp(FIT_POLISH_RELATIVE * z);
+	}
+	fit_clamp(pb, out, out);
+}
+
+/// One start from x0 (overwritten by its minimum): over the growing horizon when staged, else
+/// over all the tracks at once. Returns the last stage's GSL status or -1 (ls->error).
+static int run_start(fit_ls *ls, double *x0, bool staged, size_t *iterations, double *cost) {
+	const fit_problem *pb = &ls->problem;
+	double last = pb->shots[0].obs[pb->shots[0].obs_count - 1].t;
+	for (int s = 1; s < pb->shot_count; ++s)
+		last = fmax(last, pb->shots[s].obs[pb->shots[s].obs_count - 1].t);
+	*iterations = 0;
+	// A growing horizon: each stage starts where the previous one ended, so the iterate's
+	// collision sequence follows the observed one a stage at a time.
+	for (double horizon = FIT_FIRST_HORIZON;; horizon *= FIT_HORIZON_GROWTH) {
+		ls->problem.horizon = staged && horizon < last ? horizon : INFINITY;
+		const int limit = ls->max_iterations;
+		if (isfinite(ls->problem.horizon) && ls->max_iterations > FIT_STAGE_ITERATIONS)
+			ls->max_iterations = FIT_STAGE_ITERATIONS;
+		int status = fit_ls_minimize(ls, x0, -1, iterations, cost);
+		ls->max_iterations = limit;
+		if (status < 0 || !isfinite(ls->problem.horizon))
+			return status;
+	}
+}
+
+void fit_solution_free(fit_solution *s) {
+	free(s->x);
+	free(s->est);
+	free(s->correlation);
+	free(s->shot_rms);
+	memset(s, 0, sizeof *s);
+}
+
+static int fail(fit_ls *ls) {
+	fprintf(stderr, "%s: %s\n", FIT_PROGRAM, ls->error != POOL_OK ? pool_result_str(ls->error) : "out of memory");
+	return POOL_EXIT_INTERNAL;
+}
+
+int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
+	const double started = now_s();
+	gsl_set_error_handler_off(); // GSL's default handler aborts; errors come back as statuses here
+	const size_t p = (size_t)pb->p;
+	memset(out, 0, sizeof *out);
+	out->p = pb->p;
+	out->x = malloc(p * sizeof *out->x);
+	out->est = calloc(p, sizeof *out->est);
+	out->correlation = calloc(p * p, sizeof *out->correlation);
+	out->shot_rms = calloc((size_t)pb->shot_count, sizeof *out->shot_rms);
+	const int start_count = o->starts < 1 ? 1 : o->starts;
+	double *starts = malloc((size_t)(start_count + 2) * p * sizeof *starts);
+	double *costs = malloc((size_t)start_count * sizeof *costs);
+	fit_ls ls;
+	bool ready = out->x && out->est && out->correlation && out->shot_rms && starts && costs;
+	if (!ready || fit_ls_create(&ls, pb, o->max_iterations) != 0) {
+		free(starts);
+		free(costs);
+		fit_solution_free(out);
+		fprintf(stderr, "%s: out of memory\n", FIT_PROGRAM);
+		return POOL_EXIT_INTERNAL;
+	}
+	int given = given_starts(pb, starts), status = 0, best = -1;
+	if (given > start_count)
+		given = start_count;
+	uint64_t rng = o->seed;
+	for (int k = 0; k < start_count; ++k) {
+		double *x0 = starts + (size_t)k * p;
+		if (k >= given) // near the best so far
+			polish_start(pb, starts + (size_t)best * p, k - given, &rng, x0);
+		size_t iterations = 0;
+		int gsl_status = run_start(&ls, x0, k < given, &iterations, &costs[k]);
+		if (gsl_status < 0) {
+			status = fail(&ls);
+			break;
+		}
+		if (!o->quiet)
+			fprintf(stderr, "%s: start %d of %d (%s): %zu iterations, rms %.3g m%s\n", FIT_PROGRAM, k + 1,
+			        start_count, k < given ? "staged" : "near the best", iterations,
+			        sqrt(fit_sum_squares(ls.cached_f, pb->n_obs) / (double)pb->n_obs),
+			        gsl_status == GSL_SUCCESS ? "" : gsl_status == GSL_EMAXITER ? " (iteration limit)" : " (stopped)");
+		if (best < 0 || costs[k] < costs[best]) {
+			best = k;
+			out->iterations = (int)iterations;
+			out->converged = gsl_status == GSL_SUCCESS;
+			out->best_start = k;
+		}
+		out->starts = k + 1;
+	}
+	if (status == 0) {
+		memcpy(out->x, starts + (size_t)best * p, p * sizeof *out->x);
+		out->dof = (long)pb->n_obs - pb->p;
+		out->sigma_given = o->sigma > 0.0;
+		out->sigma = out->sigma_given ? o->sigma : sqrt(costs[best] / (double)out->dof);
+		fit_intervals_options io = {.sigma = out->sigma, .normal = out->sigma_given, .profile = o->profile};
+		if (fit_intervals(&ls, &io, out, starts, costs, out->starts) != 0)
+			status = fail(&ls);
+	}
+	fit_ls_free(&ls);
+	free(starts);
+	free(costs);
+	out->seconds = now_s() - started;
+	if (status) {
+		fit_solution_free(out);
+		return status;
+	}
+	return 0;
+}
