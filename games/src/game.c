@@ -191,7 +191,7 @@ pool_result pool_game_check_balls(const pool_game_state *s, const pool_ball_stat
 	for (int i = 0; i < count; ++i) {
 		const int32_t id = balls[i].id;
 		if (s->rules != POOL_GAME_THREE_CUSHION && (id < 0 || id > last))
-			return pool_game_fail(error, POOL_ERR_INVALID_ARGUMENT, "balls: id %d is not a %s ball (0 to %d)",
+			return pool_game_fail(error, POOL_ERR_INVALID_ARGUMENT, "balls: id %d is not a ball of %s (0 to %d)",
 			                      (int)id, rules, (int)last);
 	}
 	if (s->rules == POOL_GAME_THREE_CUSHION) {

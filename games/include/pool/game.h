@@ -160,7 +160,7 @@ POOL_API pool_result pool_game_state_validate(const pool_game_state *state, pool
 /// Checks that the balls (count of them) can be a table of state->rules: the state in range, at
 /// most POOL_GAME_MAX_BALLS balls, every id one of the game's (8-ball 0 to 15, 9-ball 0 to 9, the
 /// cue ball 0 among them; three cushion exactly three balls, the two cue balls among them). The
-/// message names the field ("balls: id 16 is not an 8ball ball (0 to 15)").
+/// message names the field ("balls: id 16 is not a ball of 8ball (0 to 15)").
 POOL_API pool_result pool_game_check_balls(const pool_game_state *state, const pool_ball_state *balls,
                                            int count, pool_error *error);
 
@@ -172,7 +172,7 @@ POOL_API pool_game_shot pool_game_shot_of_sim(const pool_sim *sim);
 /// ball hit, rails after contact, pocketed balls) and the next state. table gives the head string
 /// (x = L/4) for ball-in-hand placement. Errors (the message names the field): the state out of
 /// range, no strike first, more than POOL_GAME_MAX_BALLS balls, an id the game has no ball for
-/// ("balls: id 16 is not an 8ball ball (0 to 15)"), three cushion without three balls.
+/// ("balls: id 16 is not a ball of 8ball (0 to 15)"), three cushion without three balls.
 POOL_API pool_result pool_game_judge(const pool_game_state *state, const pool_game_shot *shot,
                                      const pool_table_def *table, pool_game_result *result,
                                      pool_error *error);
