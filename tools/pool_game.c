@@ -464,12 +464,20 @@ static int set_up_shot(game *g, const answer *a) {
 		else
 			g->balls[g->count++] = placed;
 	}
-	for (int i = 0; i < g->count; ++i)
-		if ((r = pool_sim_add_ball(g->sim, &g->balls[i], &e)) != POOL_OK) {
-			const bool cue_ball = g->balls[i].id == cue && a->has_cue_pos;
-			const char *colon = strchr(e.message, ':');
-			return cue_ball ? shot_error(shot, "cue_pos:%s", colon ? colon + 1 : e.message)
-			                : (fprintf(stderr, "%s: shot %ld: %s\n", PROGRAM, shot, e.message), pool_cli_result_status(r));
+	// A placed cue ball goes in last, so that the library's refusal (an overlap, off the table)
+	// is about it and is reported as the answer's cue_pos.
+	for (int pass = 0; pass < 2; ++pass)
+		for (int i = 0; i < g->count; ++i) {
+			const bool placed = g->balls[i].id == cue && a->has_cue_pos;
+			if (placed != (pass == 1))
+				continue;
+			if ((r = pool_sim_add_ball(g->sim, &g->balls[i], &e)) != POOL_OK) {
+				const char *colon = strchr(e.message, ':');
+				if (placed)
+					return shot_error(shot, "cue_pos:%s", colon ? colon + 1 : e.message);
+				fprintf(stderr, "%s: shot %ld: %s\n", PROGRAM, shot, e.message);
+				return pool_cli_result_status(r);
+			}
 		}
 	return 0;
 }

@@ -177,6 +177,15 @@ POOL_API pool_result pool_game_judge(const pool_game_state *state, const pool_ga
                                      const pool_table_def *table, pool_game_result *result,
                                      pool_error *error);
 
+/// One shot of a game in one call, what a player loop does per shot: resets sim to def, adds the
+/// balls (count of them), strikes state->cue_ball, runs the shot to its end, judges it under
+/// state, and writes every ball's state at the end (count of them, in the order given) to final.
+/// Returns POOL_OK, or the first error with its message (a ball the library refuses, a strike it
+/// refuses: a^2 + b^2 >= R^2...), *result untouched.
+POOL_API pool_result pool_game_shoot(pool_sim *sim, const pool_sim_def *def, const pool_ball_state *balls,
+                                     int count, const pool_strike *strike, const pool_game_state *state,
+                                     pool_game_result *result, pool_ball_state *final, pool_error *error);
+
 /// Where the rules put a ball back on the table (WPA 1.4: on the foot spot, else as near to it
 /// as possible behind it on the long string, else in front of it; three cushion, UMB art. 28: its
 /// starting spot, else the other spots). balls are the balls on the table (count of them) that
