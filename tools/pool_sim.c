@@ -216,6 +216,8 @@ int main(int argc, char **argv) {
 		}
 		hook = pool_lcm_sim_publisher_event;
 		hook_user = publisher;
+		if (scenario.has_game)
+			pool_lcm_sim_publisher_set_game(publisher, &scenario.game, &scenario.def.table);
 	}
 #endif
 	clock_t start = clock();
