@@ -163,6 +163,44 @@ static void test_opening_positions(void **state) {
 	}
 }
 
+// pool_game_shoot does in one call what a player loop does per shot: the same events, the same
+// verdict and the final states of pool_sim_state_at at the end.
+static void test_shoot_in_one_call(void **state) {
+	(void)state;
+	const pool_sim_def def = fix_pool_def();
+	pool_ball_state balls[16];
+	const int n = pool_rack(POOL_RACK_9BALL, &def.table, &def.params, 0.0, balls, 16);
+	const pool_strike strike = pool_break_strike(7.0);
+	const pool_game_state st = pool_game_default_state(POOL_GAME_9BALL);
+	pool_sim *one, *two;
+	pool_error err;
+	assert_int_equal(pool_sim_create(&def, &one, &err), POOL_OK);
+	assert_int_equal(pool_sim_create(&def, &two, &err), POOL_OK);
+	pool_game_result r;
+	pool_ball_state final[16];
+	assert_int_equal(pool_game_shoot(one, &def, balls, n, &strike, &st, &r, final, &err), POOL_OK);
+	for (int i = 0; i < n; ++i)
+		assert_int_equal(pool_sim_add_ball(two, &balls[i], &err), POOL_OK);
+	assert_int_equal(pool_sim_strike(two, 0, &strike, &err), POOL_OK);
+	assert_int_equal(pool_sim_run(two), POOL_OK);
+	const pool_game_shot shot = pool_game_shot_of_sim(two);
+	pool_game_result want;
+	assert_int_equal(pool_game_judge(&st, &shot, &def.table, &want, &err), POOL_OK);
+	assert_memory_equal(&r, &want, sizeof r);
+	pool_ball_state end[16];
+	assert_int_equal(pool_sim_state_at(two, pool_sim_end_time(two), end), POOL_OK);
+	assert_memory_equal(final, end, (size_t)n * sizeof *end);
+	// A strike the library refuses: its message, the result untouched.
+	pool_strike bad = strike;
+	bad.a = def.params.ball_radius;
+	pool_game_result untouched = r;
+	assert_int_equal(pool_game_shoot(one, &def, balls, n, &bad, &st, &r, final, &err), POOL_ERR_BAD_STRIKE);
+	assert_true(strncmp(err.message, "strike", 6) == 0);
+	assert_memory_equal(&r, &untouched, sizeof r);
+	pool_sim_destroy(one);
+	pool_sim_destroy(two);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_names_round_trip),
@@ -170,6 +208,7 @@ int main(void) {
 		cmocka_unit_test(test_bad_shots_refused),
 		cmocka_unit_test(test_spot_positions),
 		cmocka_unit_test(test_opening_positions),
+		cmocka_unit_test(test_shoot_in_one_call),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
