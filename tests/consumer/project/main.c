@@ -1,7 +1,10 @@
-// A user's program: solves (x - 1)(x - 2)(x - 3)(x - 4) = 0 through the installed libpool.
+// A user's program: solves (x - 1)(x - 2)(x - 3)(x - 4) = 0 through the installed libpool, and
+// reads the installed libpool games' names and noise presets.
 #include <math.h>
 #include <stdio.h>
 
+#include <pool/game.h>
+#include <pool/noise.h>
 #include <pool/pool.h>
 
 int main(void) {
@@ -14,5 +17,9 @@ int main(void) {
 	for (int i = 0; i < 4; ++i)
 		if (fabs(roots[i] - (i + 1)) > 1e-12)
 			return 1;
+	pool_noise noise;
+	if (pool_game_rules_from_name("9ball") != POOL_GAME_9BALL || pool_noise_preset("fastfiz", &noise) != POOL_OK ||
+	    noise.speed != 0.075)
+		return 1;
 	return 0;
 }
