@@ -11,16 +11,6 @@
 // Sampling beyond this many grid instants would make files nobody can plot; dt is widened.
 #define POOL_RESULT_MAX_SAMPLES 20000
 
-const char *pool_stop_reason_name(pool_stop_reason reason) {
-	switch (reason) {
-	case POOL_STOP_NONE: return "none";
-	case POOL_STOP_REST: return "rest";
-	case POOL_STOP_MAX_TIME: return "max_time";
-	case POOL_STOP_MAX_EVENTS: return "max_events";
-	}
-	return "unknown";
-}
-
 static void write_state(pool_jw *w, const pool_ball_state *b) {
 	pool_jw_object(w, true);
 	pool_jw_key(w, "id");
