@@ -152,8 +152,17 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 	*def = pool_default_table_def();
 	if (!table)
 		return 0;
+	// "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}.
+	if (json_is_string(table)) {
+		if (pool_table_preset(json_string_value(table), def) != POOL_OK) {
+			char shown[POOL_ESCAPE_SHORT];
+			pool_escape_text(shown, sizeof shown, json_string_value(table), json_string_length(table));
+			return fail(ctx, "table: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)", shown);
+		}
+		return 0;
+	}
 	if (!json_is_object(table))
-		return fail(ctx, "table: must be an object");
+		return fail(ctx, "table: must be a preset name or an object");
 	if (check_fields(ctx, table, "table", fields))
 		return -1;
 	json_t *preset = json_object_get(table, "preset");
