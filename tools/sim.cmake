@@ -14,7 +14,7 @@ add_custom_command(OUTPUT ${POOL_VIEW_TEMPLATE_C}
   COMMENT "Embedding the pool-view page" VERBATIM)
 add_library(pool_scenario STATIC ${POOL_SCENARIO_SOURCES} ${POOL_VIEW_TEMPLATE_C})
 target_include_directories(pool_scenario PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/common)
-target_link_libraries(pool_scenario PUBLIC pool PkgConfig::JANSSON m)
+target_link_libraries(pool_scenario PUBLIC pool pool_games PkgConfig::JANSSON m)
 
 add_executable(pool-sim ${CMAKE_CURRENT_SOURCE_DIR}/pool_sim.c)
 target_link_libraries(pool-sim PRIVATE pool_scenario)

@@ -815,7 +815,7 @@ def write_result(path, source, sample_dt=None, pretty=False):
 def __getattr__(name):
     # libpool.batch (NumPy) is imported on first use, so `import libpool` needs nothing but the
     # standard library.
-    if name in ("batch", "arrays", "documents"):
+    if name in ("batch", "game", "gym", "aim", "arrays", "documents"):
         import importlib
         return importlib.import_module("." + name, __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
