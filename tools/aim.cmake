@@ -12,5 +12,10 @@ function(pool_aim_setup)
   add_executable(pool-aim ${CMAKE_CURRENT_SOURCE_DIR}/pool_aim.c)
   target_link_libraries(pool-aim PRIVATE pool_aim_tool)
   install(TARGETS pool-aim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  # pool-aim-trials: the evidence campaign (random layouts with a straight-in shot; the tests and
+  # docs/measurements.md).
+  add_executable(pool-aim-trials ${CMAKE_CURRENT_SOURCE_DIR}/aim_trials.c)
+  target_link_libraries(pool-aim-trials PRIVATE pool_scenario pool_planning m)
 endfunction()
 cmake_language(DEFER CALL pool_aim_setup)
+

@@ -191,7 +191,7 @@ static int run_trial(const trials_options *o, long index, double sigma, double *
 		if (s >= 0 && k == FIT_PHI) // pool-fit reports phi in (-180, 180]
 			truth[j] = remainder(truth[j], 2.0 * 3.14159265358979323846);
 	}
-	fit_options fo = {.starts = 6, .max_iterations = 200, .seed = 1, .quiet = true};
+	fit_options fo = {.starts = 6, .max_iterations = 200, .seed = 1, .retries = 8, .quiet = true};
 	fit_solution sol = {0};
 	if (status == 0 && fit_solve(&pb, &fo, &sol) == 0) {
 		out->solved = true;

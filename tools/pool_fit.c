@@ -23,6 +23,7 @@
 #define FIT_MAX_THREADS 1024
 #define FIT_DEFAULT_STARTS 6
 #define FIT_DEFAULT_ITERATIONS 200
+#define FIT_DEFAULT_RETRIES 8
 
 typedef struct fit_cli {
 	const char *paths[2 * FIT_MAX_SHOTS];
@@ -40,7 +41,7 @@ typedef struct fit_cli {
 
 static const char usage_text[] =
 	"usage: pool-fit SCENARIO.json TRACKS.csv [SCENARIO.json TRACKS.csv ...] [--fit NAMES]\n"
-	"                [--sigma M] [--starts N] [--max-iterations N] [--seed S] [--ball ID]\n"
+	"                [--sigma M] [--starts N] [--retries N] [--max-iterations N] [--seed S] [--ball ID]\n"
 	"                [--intervals auto|wald|profile] [--threads N] [-o PREFIX] [--summary]\n"
 	"                [--quiet] [--max-input BYTES]\n"
 	"\n"
@@ -66,6 +67,9 @@ static const char usage_text[] =
 	"  --starts N        starting points (default 6): the scenario's strike and the guess from the\n"
 	"                    tracks, then starts near the best fit; the lowest residual wins, and the\n"
 	"                    intervals span other minima that fit as well\n"
+	"  --retries N       more starts from random points near the first (default 8), tried only while\n"
+	"                    the best fit's rms is above 1.3 times the tracks' own noise (estimated from\n"
+	"                    each ball's second differences): a fit in a wrong minimum\n"
 	"  --max-iterations N  per start (default 200)\n"
 	"  --seed S          seed of the perturbed starts (default 1)\n"
 	"  --ball ID         the struck ball of scenarios without a strike\n"
@@ -90,6 +94,7 @@ static int parse_options(int argc, char **argv, fit_cli *o) {
 	o->solver.starts = FIT_DEFAULT_STARTS;
 	o->solver.max_iterations = FIT_DEFAULT_ITERATIONS;
 	o->solver.seed = 1;
+	o->solver.retries = FIT_DEFAULT_RETRIES;
 	o->max_input = POOL_INPUT_DEFAULT_MAX;
 	bool options_done = false;
 	for (int i = 1; i < argc; ++i) {
@@ -118,7 +123,7 @@ static int parse_options(int argc, char **argv, fit_cli *o) {
 		}
 		static const char *const with_value[] = {"--fit", "--sigma", "--starts", "--max-iterations", "--seed",
 		                                         "--ball", "--threads", "-o", "--output", "--max-input",
-		                                         "--intervals"};
+		                                         "--intervals", "--retries"};
 		bool known = false;
 		for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; ++k)
 			known = known || strcmp(a, with_value[k]) == 0;
@@ -150,6 +155,10 @@ static int parse_options(int argc, char **argv, fit_cli *o) {
 				return pool_cli_usage_error(PROGRAM, "--starts: '%s' is not a number of starts from 1 to 1000",
 				                            pool_cli_arg(v));
 			o->solver.starts = (int)count;
+		} else if (strcmp(a, "--retries") == 0) {
+			if (!pool_cli_parse_count(v, &count) || count > 1000)
+				return pool_cli_usage_error(PROGRAM, "--retries: '%s' is not a number from 0 to 1000", pool_cli_arg(v));
+			o->solver.retries = (int)count;
 		} else if (strcmp(a, "--max-iterations") == 0) {
 			if (!pool_cli_parse_count(v, &count) || count < 1 || count > 100000)
 				return pool_cli_usage_error(PROGRAM, "--max-iterations: '%s' is not a number from 1 to 100000",

@@ -25,7 +25,7 @@ typedef struct aim_table {
 	double length, width;  ///< m, the nose lines' rectangle
 	double radius;         ///< m, ball radius
 	double contact;        ///< m, a ball on the cloth touches a nose with its centre this far from it
-	aim_xy target[6];      ///< per pocket: the point a ball's path is aimed through (behind the mouth)
+	aim_xy target[6];      ///< per pocket: the point a ball's path is aimed through (the mouth's middle)
 	aim_xy axis[6];        ///< per pocket: unit, pointing out of the table through the mouth
 	double accept[6];      ///< per pocket: cos of the widest angle of approach to the axis tried
 	double span_lo[4][2], span_hi[4][2]; ///< per rail: the stretches of cushion a ball may bounce
@@ -142,7 +142,7 @@ int aim_position_score(const aim_search *s, const aim_candidate *c, const aim_wo
 /// Returns how many, or -1 when out of memory.
 int aim_rank(aim_search *s, int *order);
 
-/// The 95 % Wilson score interval of k successes in n.
+/// The 95 % Wilson score interval of k successes in n, with continuity correction.
 void aim_wilson(long k, long n, double *lo, double *hi);
 
 /// Runs fn(s, worker, i) for i in [0, count) on s->threads threads (on fewer, down to the calling

@@ -28,15 +28,16 @@ void aim_table_init(aim_table *t, const pool_sim_def *def) {
 	t->radius = R;
 	t->contact = pool_table_contact_distance(&def->table, R);
 	const double s2 = sqrt(0.5), corner = cos(AIM_CORNER_ACCEPT_DEG * AIM_DEG), side = cos(AIM_SIDE_ACCEPT_DEG * AIM_DEG);
-	// Corners: the corner of the nose lines, a ball's radius behind the mouth's middle along the
-	// diagonal; sides: a ball's radius behind the middle of the mouth. A path through them crosses
-	// the mouth in its middle whatever the model of the pocket behind it.
-	t->target[POOL_POCKET_SW] = (aim_xy){0.0, 0.0};
-	t->target[POOL_POCKET_SE] = (aim_xy){L, 0.0};
-	t->target[POOL_POCKET_NW] = (aim_xy){0.0, W};
-	t->target[POOL_POCKET_NE] = (aim_xy){L, W};
-	t->target[POOL_POCKET_S] = (aim_xy){L / 2, -R};
-	t->target[POOL_POCKET_N] = (aim_xy){L / 2, W + R};
+	// The middle of each mouth, on the line joining its jaws' points (a corner mouth opens
+	// corner_mouth / sqrt 2 of each rail line): a path through it passes both jaws at the same
+	// distance, whatever the angle it comes in at and whatever the pocket behind the mouth.
+	const double m = def->table.corner_mouth * s2 / 2.0;
+	t->target[POOL_POCKET_SW] = (aim_xy){m, m};
+	t->target[POOL_POCKET_SE] = (aim_xy){L - m, m};
+	t->target[POOL_POCKET_NW] = (aim_xy){m, W - m};
+	t->target[POOL_POCKET_NE] = (aim_xy){L - m, W - m};
+	t->target[POOL_POCKET_S] = (aim_xy){L / 2, 0.0};
+	t->target[POOL_POCKET_N] = (aim_xy){L / 2, W};
 	t->axis[POOL_POCKET_SW] = (aim_xy){-s2, -s2};
 	t->axis[POOL_POCKET_SE] = (aim_xy){s2, -s2};
 	t->axis[POOL_POCKET_NW] = (aim_xy){-s2, s2};

@@ -27,12 +27,12 @@ void aim_wilson(long k, long n, double *lo, double *hi) {
 		*lo = 0.0, *hi = 1.0;
 		return;
 	}
-	const double z2 = AIM_Z95 * AIM_Z95, p = (double)k / (double)n, nn = (double)n;
-	const double denom = 1.0 + z2 / nn, centre = (p + z2 / (2.0 * nn)) / denom;
-	const double half = AIM_Z95 * sqrt(p * (1.0 - p) / nn + z2 / (4.0 * nn * nn)) / denom;
-	// Exactly 0 and 1 at the ends (the formula gives them only to rounding).
-	*lo = k == 0 ? 0.0 : fmax(0.0, centre - half);
-	*hi = k == n ? 1.0 : fmin(1.0, centre + half);
+	// Wilson's score interval with continuity correction (Newcombe 1998, method 4). Without the
+	// correction its coverage dips below 95 % for shares near 0 and 1, the shares a good shot has.
+	const double z = AIM_Z95, z2 = z * z, nn = (double)n, p = (double)k / nn, q = 1.0 - p;
+	const double denom = 2.0 * (nn + z2);
+	*lo = k == 0 ? 0.0 : fmax(0.0, (2.0 * nn * p + z2 - 1.0 - z * sqrt(z2 - 2.0 - 1.0 / nn + 4.0 * p * (nn * q + 1.0))) / denom);
+	*hi = k == n ? 1.0 : fmin(1.0, (2.0 * nn * p + z2 + 1.0 + z * sqrt(z2 + 2.0 - 1.0 / nn + 4.0 * p * (nn * q - 1.0))) / denom);
 }
 
 /// One round: candidates list[0..count) get samples [have[k], want) of a stream.

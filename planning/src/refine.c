@@ -18,6 +18,12 @@
 #define AIM_BOOSTS 2
 #define AIM_FASTEST 8.0
 
+// The window of aims that pot: searched from the refined aim outwards in steps doubling from
+// this (rad, 0.02 degree) up to this far (2 degrees), then its edges bisected this many times.
+#define AIM_WINDOW_STEP (0.02 * AIM_DEG)
+#define AIM_WINDOW_REACH (2.0 * AIM_DEG)
+#define AIM_WINDOW_BISECTIONS 6
+
 typedef enum outcome { FOUND, SHORT, LOST } outcome;
 
 /// The miss at phi; false when the shot did not go as meant (or the library refused it).
@@ -72,6 +78,38 @@ static outcome aim_phi(aim_search *s, aim_worker *w, const aim_candidate *c, con
 	return short1 || short0 ? SHORT : LOST;
 }
 
+static bool pots_at(aim_search *s, aim_worker *w, const aim_candidate *c, pool_strike strike, double phi) {
+	strike.phi = phi;
+	return aim_simulate(s, w, c, &strike) == POOL_OK && aim_success(s, w, c);
+}
+
+/// One edge of the window of aims that pot, from phi (which pots) in direction side.
+static double window_edge(aim_search *s, aim_worker *w, const aim_candidate *c, const pool_strike *strike,
+                          double phi, double side) {
+	double in = 0.0, out = AIM_WINDOW_STEP;
+	while (out < AIM_WINDOW_REACH && pots_at(s, w, c, *strike, phi + side * out))
+		in = out, out *= 2.0;
+	for (int k = 0; k < AIM_WINDOW_BISECTIONS; ++k) {
+		double mid = 0.5 * (in + out);
+		if (pots_at(s, w, c, *strike, phi + side * mid))
+			in = mid;
+		else
+			out = mid;
+	}
+	return phi + side * 0.5 * (in + out);
+}
+
+/// The aim in the middle of the window of aims that pot without noise. The mouth's middle is the
+/// pocket's middle only head on: from an angle one jaw stands in the way sooner than the other,
+/// and throw moves the window too; the middle of the window leaves the most room to an aiming
+/// error either way, the noise that matters most.
+static double center_window(aim_search *s, aim_worker *w, const aim_candidate *c, const pool_strike *strike,
+                            double phi) {
+	double lo = window_edge(s, w, c, strike, phi, -1.0), hi = window_edge(s, w, c, strike, phi, 1.0);
+	double mid = 0.5 * (lo + hi);
+	return pots_at(s, w, c, *strike, mid) ? mid : phi;
+}
+
 void aim_refine(aim_search *s, aim_worker *w, aim_candidate *c) {
 	if (atomic_load(&s->out_of_time) || aim_now() > s->refine_deadline) {
 		atomic_store(&s->out_of_time, true);
@@ -103,7 +141,10 @@ void aim_refine(aim_search *s, aim_worker *w, aim_candidate *c) {
 			return;
 		strike.phi = remainder(phi, 2.0 * AIM_PI);
 	}
-	if (aim_simulate(s, w, c, &strike) != POOL_OK || !aim_success(s, w, c))
+	if (!pots_at(s, w, c, strike, strike.phi))
+		return;
+	strike.phi = center_window(s, w, c, &strike, strike.phi);
+	if (!pots_at(s, w, c, strike, strike.phi)) // (center_window's last shot, run again for the final state)
 		return;
 	c->strike = strike;
 	c->state = AIM_POTS;

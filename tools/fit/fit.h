@@ -77,6 +77,10 @@ typedef struct fit_shot {
 	double start[FIT_SHOT_PARAMS]; ///< starting values (internal units)
 } fit_shot;
 
+/// The position noise of the tracks (m per coordinate), from the second differences of each
+/// ball's positions over evenly spaced frames (robust: their median); NAN with too few.
+double fit_track_noise(const fit_shot *shots, int count);
+
 /// The whole problem: the shots, which parameters are free, the parameter vector's layout.
 /// x = [free table parameters..., shot 0's free parameters..., shot 1's ...].
 typedef struct fit_problem {
@@ -200,6 +204,7 @@ typedef struct fit_solution {
 	bool converged;
 	bool profiled;        ///< the intervals come from the profile of the cost (else from se)
 	double *shot_rms;     ///< m, per shot
+	double track_noise;   ///< m, the tracks' own noise (fit_track_noise)
 	double seconds;       ///< wall time of the fit
 } fit_solution;
 
@@ -221,6 +226,8 @@ typedef struct fit_options {
 	int max_iterations;
 	double sigma;      ///< m, known noise of the positions; 0 = estimate it from the residual
 	unsigned long seed; ///< of the perturbed starts
+	int retries;       ///< more staged starts, from random points near the start, while the best
+	                   ///< fit's rms is above FIT_RETRY_RATIO times the tracks' own noise
 	bool quiet;
 } fit_options;
 

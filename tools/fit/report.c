@@ -119,6 +119,8 @@ char *fit_report_json(const fit_problem *pb, const fit_solution *s) {
 	pool_jw_number(&w, s->sigma);
 	pool_jw_key(&w, "sigma_given");
 	pool_jw_bool(&w, s->sigma_given);
+	pool_jw_key(&w, "track_noise");
+	pool_jw_number(&w, s->track_noise);
 	pool_jw_end(&w, '}');
 
 	pool_jw_key(&w, "solver");
@@ -157,8 +159,8 @@ char *fit_report_text(const fit_problem *pb, const fit_solution *s) {
 	pool_text_buffer b = {0};
 	long observations = (long)(pb->n_obs / 2);
 	pool_text_appendf(&b, "%s: %d shot%s, %ld observations, %d parameters: rms residual %.3g mm, sigma %.3g mm per "
-	    "coordinate (%s), %d iterations, %s, %.3f s\n", FIT_PROGRAM, pb->shot_count, pb->shot_count == 1 ? "" : "s",
-	    observations, pb->p, 1e3 * s->rms, 1e3 * s->sigma, s->sigma_given ? "given" : "estimated", s->iterations,
+	    "coordinate (%s; the tracks' own noise %.3g mm), %d iterations, %s, %.3f s\n", FIT_PROGRAM, pb->shot_count, pb->shot_count == 1 ? "" : "s",
+	    observations, pb->p, 1e3 * s->rms, 1e3 * s->sigma, s->sigma_given ? "given" : "estimated", 1e3 * s->track_noise, s->iterations,
 	    s->converged ? "converged" : "not converged", s->seconds);
 	pool_text_appendf(&b, "  %-13s %5s %14s %12s %31s %14s\n", "parameter", "shot", "value", "se",
 	    s->profiled ? "95 % interval (profile)" : "95 % interval", "start");

@@ -31,6 +31,14 @@
 #define FIT_POLISH_TIP 5e-4
 #define FIT_POLISH_PHI 8.7e-4
 #define FIT_POLISH_RELATIVE 0.01
+// A fit whose rms is above this many times the tracks' own noise (fit_track_noise) is in a wrong
+// minimum: a converged one is within a few per cent of it. Retries start from random points near
+// the start: phi within this sd (rad, 1 degree), speeds and table parameters within this relative
+// sd, tip offsets uniform within this share of the radius either way.
+#define FIT_RETRY_RATIO 1.3
+#define FIT_RETRY_PHI 0.0174533
+#define FIT_RETRY_RELATIVE 0.1
+#define FIT_RETRY_TIP 0.4
 
 static double now_s(void) {
 	struct timespec ts;
@@ -38,17 +46,19 @@ static double now_s(void) {
 	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/// A standard normal deviate from a splitmix64 stream (the random starts need no more).
+/// A uniform deviate in (0, 1) from a splitmix64 stream (the random starts need no more).
+static double uniform(uint64_t *state) {
+	uint64_t z = (*state += 0x9E3779B97F4A7C15ULL);
+	z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+	z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+	z ^= z >> 31;
+	return ((double)(z >> 11) + 0.5) / 9007199254740992.0;
+}
+
+/// A standard normal deviate (Box-Muller).
 static double normal(uint64_t *state) {
-	double u[2];
-	for (int k = 0; k < 2; ++k) {
-		uint64_t z = (*state += 0x9E3779B97F4A7C15ULL);
-		z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-		z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-		z ^= z >> 31;
-		u[k] = ((double)(z >> 11) + 0.5) / 9007199254740992.0;
-	}
-	return sqrt(-2.0 * log(u[0])) * cos(6.283185307179586 * u[1]);
+	double u = uniform(state), v = uniform(state);
+	return sqrt(-2.0 * log(u)) * cos(6.283185307179586 * v);
 }
 
 /// The given starting points: the problem's start (each shot's scenario strike, or its track
@@ -106,6 +116,23 @@ static void polish_start(const fit_problem *pb, const double *x, int k, uint64_t
 	fit_clamp(pb, out, out);
 }
 
+/// A retry's start: a random point near the start x.
+static void retry_start(const fit_problem *pb, const double *x, uint64_t *rng, double *out) {
+	memcpy(out, x, (size_t)pb->p * sizeof *out);
+	for (int j = 0; j < pb->p; ++j) {
+		int shot, index;
+		fit_param_of(pb, j, &shot, &index);
+		if (shot >= 0 && index == FIT_PHI)
+			out[j] += FIT_RETRY_PHI * normal(rng);
+		else if (shot >= 0 && (index == FIT_A || index == FIT_B)) {
+			double R = pb->shots[shot].scenario.def.params.ball_radius;
+			out[j] = FIT_RETRY_TIP * R * (2.0 * uniform(rng) - 1.0);
+		} else if (!(shot >= 0 && (index == FIT_T0 || index == FIT_THETA)))
+			out[j] *= exp(FIT_RETRY_RELATIVE * normal(rng));
+	}
+	fit_clamp(pb, out, out);
+}
+
 /// One start from x0 (overwritten by its minimum): over the growing horizon when staged, else
 /// over all the tracks at once. Returns the last stage's GSL status or -1 (ls->error).
 static int run_start(fit_ls *ls, double *x0, bool staged, size_t *iterations, double *cost) {
@@ -151,9 +178,9 @@ int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
 	out->est = calloc(p, sizeof *out->est);
 	out->correlation = calloc(p * p, sizeof *out->correlation);
 	out->shot_rms = calloc((size_t)pb->shot_count, sizeof *out->shot_rms);
-	const int start_count = o->starts < 1 ? 1 : o->starts;
-	double *starts = malloc((size_t)(start_count + 2) * p * sizeof *starts);
-	double *costs = malloc((size_t)start_count * sizeof *costs);
+	const int start_count = o->starts < 1 ? 1 : o->starts, retries = o->retries > 0 ? o->retries : 0;
+	double *starts = malloc((size_t)(start_count + retries + 2) * p * sizeof *starts);
+	double *costs = malloc((size_t)(start_count + retries) * sizeof *costs);
 	fit_ls ls;
 	bool ready = out->x && out->est && out->correlation && out->shot_rms && starts && costs;
 	if (!ready || fit_ls_create(&ls, pb, o->max_iterations) != 0) {
@@ -167,19 +194,31 @@ int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
 	if (given > start_count)
 		given = start_count;
 	uint64_t rng = o->seed;
-	for (int k = 0; k < start_count; ++k) {
+	out->track_noise = fit_track_noise(pb->shots, pb->shot_count);
+	const double enough = FIT_RETRY_RATIO * FIT_RETRY_RATIO * out->track_noise * out->track_noise * (double)pb->n_obs;
+	double *origin = malloc(p * sizeof *origin);
+	if (!origin)
+		status = fail(&ls);
+	else
+		fit_start_vector(pb, origin);
+	for (int k = 0; status == 0 && k < start_count + retries; ++k) {
 		double *x0 = starts + (size_t)k * p;
-		if (k >= given) // near the best so far
+		const bool retry = k >= start_count;
+		if (retry && !(costs[best] > enough)) // (a NAN noise: no retries)
+			break;
+		if (retry)
+			retry_start(pb, origin, &rng, x0);
+		else if (k >= given) // near the best so far
 			polish_start(pb, starts + (size_t)best * p, k - given, &rng, x0);
 		size_t iterations = 0;
-		int gsl_status = run_start(&ls, x0, k < given, &iterations, &costs[k]);
+		int gsl_status = run_start(&ls, x0, k < given || retry, &iterations, &costs[k]);
 		if (gsl_status < 0) {
 			status = fail(&ls);
 			break;
 		}
 		if (!o->quiet)
 			fprintf(stderr, "%s: start %d of %d (%s): %zu iterations, rms %.3g m%s\n", FIT_PROGRAM, k + 1,
-			        start_count, k < given ? "staged" : "near the best", iterations,
+			        start_count, retry ? "retry" : k < given ? "staged" : "near the best", iterations,
 			        sqrt(fit_sum_squares(ls.cached_f, pb->n_obs) / (double)pb->n_obs),
 			        gsl_status == GSL_SUCCESS ? "" : gsl_status == GSL_EMAXITER ? " (iteration limit)" : " (stopped)");
 		if (best < 0 || costs[k] < costs[best]) {
@@ -202,6 +241,7 @@ int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
 	fit_ls_free(&ls);
 	free(starts);
 	free(costs);
+	free(origin);
 	out->seconds = now_s() - started;
 	if (status) {
 		fit_solution_free(out);

@@ -144,3 +144,47 @@ int fit_tracks_parse(const char *file, const char *text, size_t length, const po
 	*count = rows;
 	return 0;
 }
+
+static int by_value(const void *a, const void *b) {
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+double fit_track_noise(const fit_shot *shots, int count) {
+	// Per ball, the second difference of its positions over three frames evenly spaced in time:
+	// the motion's share is a dt^2 (0.2 mm at 100 Hz for 2 m/s^2), the noise's has variance 6
+	// sigma^2. The median of |d| is 0.6745 sqrt(6) sigma for Gaussian noise, and collisions, a few
+	// frames among hundreds, do not move it.
+	long total = 0;
+	for (int s = 0; s < count; ++s)
+		total += 2 * shots[s].obs_count;
+	double *d = malloc((size_t)(total > 0 ? total : 1) * sizeof *d);
+	if (!d)
+		return NAN;
+	long n = 0;
+	for (int s = 0; s < count; ++s) {
+		const fit_shot *sh = &shots[s];
+		for (int b = 0; b < sh->scenario.ball_count; ++b) {
+			const fit_observation *prev = NULL, *mid = NULL;
+			for (long i = 0; i < sh->obs_count; ++i) {
+				const fit_observation *o = &sh->obs[i];
+				if (o->ball != b)
+					continue;
+				if (prev && mid && fabs((o->t - mid->t) - (mid->t - prev->t)) <= 1e-9 * fabs(o->t - prev->t) &&
+				    o->t > mid->t) {
+					d[n++] = fabs(o->x - 2.0 * mid->x + prev->x);
+					d[n++] = fabs(o->y - 2.0 * mid->y + prev->y);
+				}
+				prev = mid;
+				mid = o;
+			}
+		}
+	}
+	double sigma = NAN;
+	if (n >= 10) {
+		qsort(d, (size_t)n, sizeof *d, by_value);
+		sigma = d[n / 2] / (0.6744897501960817 * sqrt(6.0));
+	}
+	free(d);
+	return sigma;
+}

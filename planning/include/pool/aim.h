@@ -69,7 +69,7 @@ typedef struct pool_aim_shot {
 	                        ///< else POOL_AIM_NO_BALL
 	pool_rail rail;         ///< bank and kick: the cushion; else POOL_RAIL_NONE
 	double p_success;       ///< share of noisy repetitions that succeed
-	double ci_low, ci_high; ///< its 95 % Wilson score interval
+	double ci_low, ci_high; ///< its 95 % Wilson score interval (with continuity correction)
 	int samples;            ///< repetitions behind it (drawn after the shot was chosen)
 	pool_vec3 cue_final;    ///< where the cue ball ends without noise
 	int position;           ///< balls the cue ball then has a clear straight pot on (-1: not scored)
