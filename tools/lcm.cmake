@@ -28,6 +28,13 @@ function(pool_lcm_tools_setup)
   add_executable(pool-lcm-subscribe ${dir}/subscribe.c)
   target_link_libraries(pool-lcm-subscribe PRIVATE pool_lcm_tools)
 
+  # pool-aim-server: the shot planner (libpool planning) on POOL_AIM_REQUEST / POOL_AIM.
+  if(TARGET pool_aim_tool)
+    add_executable(pool-aim-server ${dir}/aim_server.c)
+    target_link_libraries(pool-aim-server PRIVATE pool_lcm_tools pool_aim_tool)
+    install(TARGETS pool-aim-server RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  endif()
+
   add_executable(pool-bench-shot-server ${dir}/bench_shot_server.c)
   target_link_libraries(pool-bench-shot-server PRIVATE pool_lcm_tools pool_bench_util)
 
