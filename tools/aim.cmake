@@ -16,6 +16,9 @@ function(pool_aim_setup)
   # docs/measurements.md).
   add_executable(pool-aim-trials ${CMAKE_CURRENT_SOURCE_DIR}/aim_trials.c)
   target_link_libraries(pool-aim-trials PRIVATE pool_scenario pool_planning m)
+  # pool-bench-aim: seconds for the best shot of positions left by breaks (docs/measurements.md).
+  add_executable(pool-bench-aim ${CMAKE_CURRENT_SOURCE_DIR}/bench_aim.c)
+  target_link_libraries(pool-bench-aim PRIVATE pool_planning pool_bench_util m)
 endfunction()
 cmake_language(DEFER CALL pool_aim_setup)
 

@@ -25,6 +25,9 @@ function(pool_fit_setup)
   # pool-fit-trials: seeded synthetic trials, the coverage of pool-fit's intervals (tests, measurements).
   add_executable(pool-fit-trials ${CMAKE_CURRENT_SOURCE_DIR}/fit_trials.c)
   target_link_libraries(pool-fit-trials PRIVATE pool_fit_core)
+  # pool-bench-fit: seconds for one shot and 20 shots together (docs/measurements.md).
+  add_executable(pool-bench-fit ${CMAKE_CURRENT_SOURCE_DIR}/bench_fit.c)
+  target_link_libraries(pool-bench-fit PRIVATE pool_fit_core pool_bench_util)
   install(TARGETS pool-fit pool-tracks RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 cmake_language(DEFER CALL pool_fit_setup)

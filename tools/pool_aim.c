@@ -25,7 +25,7 @@ typedef struct aim_options {
 	long samples, top, threads;
 	unsigned long seed;
 	double budget;
-	bool position, summary, help;
+	bool position, distinct, summary, help;
 	const char *output, *svg;
 	size_t max_input;
 } aim_options;
@@ -33,7 +33,7 @@ typedef struct aim_options {
 static const char usage_text[] =
 	"usage: pool-aim SCENARIO.json [--ball ID] [--pocket NAME] [--noise fastfiz|none|SPEC] [-n SAMPLES]\n"
 	"                [--top K] [--kinds LIST] [--cue ID] [--seed S] [--time-budget S] [--threads N]\n"
-	"                [--position] [--svg FILE] [--summary] [-o FILE] [--max-input BYTES]\n"
+	"                [--position] [--distinct] [--svg FILE] [--summary] [-o FILE] [--max-input BYTES]\n"
 	"\n"
 	"Searches the shots that pot a ball of the scenario's position (its strike, if any, is ignored)\n"
 	"and prints the best, best first, as a JSON list: the strike (degrees), the ball and pocket, the\n"
@@ -54,6 +54,8 @@ static const char usage_text[] =
 	"                     depends only on the input, not on the threads or the machine)\n"
 	"  --threads N        worker threads (default: the online CPUs)\n"
 	"  --position         score where the cue ball ends: balls with a clear straight pot next\n"
+	"  --distinct         one shot per ball, pocket, kind, second ball and cushion (its best speed\n"
+	"                     and spin): K different shots\n"
 	"  --svg FILE         draw the position and the shots found on the table\n"
 	"  --summary          the search's figures and a table of the shots on standard error\n"
 	"  -o, --output FILE  write the list to FILE (atomically) instead of standard output\n"
@@ -74,6 +76,8 @@ static int option(void *context, const char *a, const char *v) {
 	long n = 0;
 	if (strcmp(a, "--position") == 0) {
 		o->position = true;
+	} else if (strcmp(a, "--distinct") == 0) {
+		o->distinct = true;
 	} else if (strcmp(a, "--summary") == 0) {
 		o->summary = true;
 	} else if (strcmp(a, "--ball") == 0) {
@@ -120,7 +124,7 @@ static int option(void *context, const char *a, const char *v) {
 
 int main(int argc, char **argv) {
 	aim_options o = {.seed = 1, .max_input = POOL_INPUT_DEFAULT_MAX};
-	static const char *const flags[] = {"--position", "--summary", NULL};
+	static const char *const flags[] = {"--position", "--distinct", "--summary", NULL};
 	static const char *const with_value[] = {"--ball", "--cue",    "--pocket",  "--noise", "--kinds",       "-n",
 	                                         "--samples", "--top", "--seed",    "--time-budget", "--threads",
 	                                         "--svg",  "-o",       "--output",  "--max-input", NULL};
@@ -165,6 +169,7 @@ int main(int argc, char **argv) {
 	def.time_budget = o.budget;
 	def.threads = (int)o.threads;
 	def.position = o.position;
+	def.distinct = o.distinct;
 	pool_aim_shot *shots = calloc((size_t)def.top, sizeof *shots);
 	int count = 0;
 	pool_aim_stats stats;

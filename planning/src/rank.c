@@ -125,6 +125,32 @@ static void sort_indices(const aim_search *s, int *order, int n, bool report) {
 	}
 }
 
+/// Whether two candidates are the same shot but for speed and spin (def->distinct keeps one).
+static bool same_shot(const aim_search *s, int a, int b) {
+	const aim_candidate *x = &s->cands[a], *y = &s->cands[b];
+	return x->kind == y->kind && x->ball == y->ball && x->via == y->via && x->pocket == y->pocket && x->rail == y->rail;
+}
+
+/// With def->distinct, the candidates order[0..n) that another one before them does not repeat
+/// (the first of each shot), moved to the front in order; else all. Returns how many.
+static int distinct_first(const aim_search *s, int *order, int n) {
+	if (!s->def->distinct)
+		return n;
+	int kept = 0;
+	for (int k = 0; k < n; ++k) {
+		bool repeat = false;
+		for (int j = 0; j < kept && !repeat; ++j)
+			repeat = same_shot(s, order[j], order[k]);
+		if (!repeat) { // keep the rest behind, in their order
+			int v = order[k];
+			for (int j = k; j > kept; --j)
+				order[j] = order[j - 1];
+			order[kept++] = v;
+		}
+	}
+	return kept;
+}
+
 int aim_rank(aim_search *s, int *order) {
 	const pool_aim_def *d = s->def;
 	int alive = 0;
@@ -143,10 +169,21 @@ int aim_rank(aim_search *s, int *order) {
 		if (alive <= K || want >= d->samples || aim_now() > s->deadline)
 			break;
 		// The K-th best lower bound: a shot whose upper bound is below it cannot be in the top K.
+		// With def->distinct, each shot counts once, by its best variant.
+		int shots = 0;
 		for (int k = 0; k < alive; ++k) {
 			double hi;
 			aim_wilson(s->cands[order[k]].successes, s->cands[order[k]].samples, &lower[k], &hi);
+			for (int j = 0; d->distinct && j < k && lower[k] >= 0.0; ++j)
+				if (lower[j] >= 0.0 && same_shot(s, order[j], order[k])) {
+					if (lower[k] > lower[j])
+						lower[j] = lower[k];
+					lower[k] = -1.0;
+				}
+			shots += lower[k] >= 0.0;
 		}
+		if (shots <= K)
+			break;
 		double *sorted = lower; // descending, in place: only the K-th value is needed
 		for (int a = 0; a < K; ++a)
 			for (int b = a + 1; b < alive; ++b)
@@ -169,7 +206,8 @@ int aim_rank(aim_search *s, int *order) {
 	}
 	free(lower);
 	sort_indices(s, order, alive, false);
-	int chosen = alive < K ? alive : K;
+	const int shots = distinct_first(s, order, alive);
+	int chosen = shots < K ? shots : K;
 	// The fresh estimate of the chosen, in chunks while a time budget runs.
 	for (long want = isfinite(s->deadline) ? AIM_REPORT_CHUNK : d->samples;; want += AIM_REPORT_CHUNK) {
 		if (want > d->samples)

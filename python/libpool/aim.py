@@ -169,7 +169,7 @@ def _c_types():
                     ("cue_ball", c_int32), ("ball", c_int32), ("pocket", c_int), ("kinds", c_uint),
                     ("game", POINTER(_game.CState)), ("noise", _game.CNoise), ("seed", c_uint64),
                     ("samples", c_int), ("top", c_int), ("time_budget", c_double), ("threads", c_int),
-                    ("position", c_bool)]
+                    ("position", c_bool), ("distinct", c_bool)]
 
     class CShot(ctypes.Structure):
         _fields_ = [("strike", _ffi.Strike), ("ball", c_int32), ("pocket", c_int), ("kind", c_int),
@@ -269,7 +269,7 @@ def _balls_of(balls, radius):
 
 def search(balls, cue_ball=0, ball=None, pocket=None, kinds=None, game=None, noise="fastfiz", seed=1,
            samples=400, top=5, time_budget=0.0, threads=0, position=False, table=None, params=None,
-           models=None, with_stats=False):
+           models=None, distinct=False, with_stats=False):
     """The best shots of a position, best first (a list of Shot; with_stats, (shots, Stats)).
 
     balls: a dict id -> (x, y), (id, (x, y)) pairs, or a Sim whose balls are at rest; cue_ball the
@@ -278,7 +278,8 @@ def search(balls, cue_ball=0, ball=None, pocket=None, kinds=None, game=None, noi
     cue ball on the table); noise a preset name, a spec ("phi=0.2,speed=0.05") or a
     libpool.game.Noise; samples behind each p_success; top the shots wanted; time_budget seconds
     (0: none, and the result depends on the input alone); threads (0: all CPUs); position scores
-    where the cue ball ends; table, params and models as for Sim. Errors raise PoolError with the
+    where the cue ball ends; distinct keeps one shot per ball, pocket, kind, second ball and cushion
+    (its best speed and spin); table, params and models as for Sim. Errors raise PoolError with the
     library's message naming the field ("aim.ball: no object ball has id 9")."""
     from . import PoolError, _ffi, _sim_def
     from . import game as _game
@@ -322,6 +323,7 @@ def search(balls, cue_ball=0, ball=None, pocket=None, kinds=None, game=None, noi
     d.time_budget = float(time_budget)
     d.threads = int(threads)
     d.position = bool(position)
+    d.distinct = bool(distinct)
     out = (CShot * max(d.top, 1))()
     count = c_int(0)
     stats = CStats()

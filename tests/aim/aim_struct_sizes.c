@@ -21,7 +21,8 @@ int main(void) {
 	FIELD(pool_aim_def, cue_ball, 0); FIELD(pool_aim_def, ball, 0); FIELD(pool_aim_def, pocket, 0);
 	FIELD(pool_aim_def, kinds, 0); FIELD(pool_aim_def, game, 0); FIELD(pool_aim_def, noise, 0);
 	FIELD(pool_aim_def, seed, 0); FIELD(pool_aim_def, samples, 0); FIELD(pool_aim_def, top, 0);
-	FIELD(pool_aim_def, time_budget, 0); FIELD(pool_aim_def, threads, 0); FIELD(pool_aim_def, position, 1);
+	FIELD(pool_aim_def, time_budget, 0); FIELD(pool_aim_def, threads, 0); FIELD(pool_aim_def, position, 0);
+	FIELD(pool_aim_def, distinct, 1);
 	begin("pool_aim_shot", sizeof(pool_aim_shot));
 	FIELD(pool_aim_shot, strike, 0); FIELD(pool_aim_shot, ball, 0); FIELD(pool_aim_shot, pocket, 0);
 	FIELD(pool_aim_shot, kind, 0); FIELD(pool_aim_shot, via, 0); FIELD(pool_aim_shot, rail, 0);

@@ -171,6 +171,28 @@ static void test_nine_ball_rules(void **state) {
 	}
 }
 
+/// distinct: the shots returned differ in ball, pocket, kind, second ball or cushion, and the best
+/// is the best of the plain search (the best variant of the best shot).
+static void test_distinct(void **state) {
+	(void)state;
+	pool_ball_state balls[] = {ball(0, 0.95, 0.42), ball(1, 1.78, 0.82), ball(2, 2.18, 0.33), ball(3, 0.52, 1.02),
+	                           ball(9, 2.02, 1.12)};
+	pool_aim_def d = def_of(balls, 5);
+	pool_aim_shot plain[TOP], distinct[TOP];
+	int n1 = 0, n2 = 0;
+	assert_int_equal(pool_aim_search(&d, plain, TOP, &n1, NULL, NULL), POOL_OK);
+	d.distinct = true;
+	assert_int_equal(pool_aim_search(&d, distinct, TOP, &n2, NULL, NULL), POOL_OK);
+	assert_true(n1 > 0 && n2 > 1);
+	for (int i = 0; i < n2; ++i)
+		for (int j = 0; j < i; ++j)
+			assert_false(distinct[i].kind == distinct[j].kind && distinct[i].ball == distinct[j].ball &&
+			             distinct[i].pocket == distinct[j].pocket && distinct[i].via == distinct[j].via &&
+			             distinct[i].rail == distinct[j].rail);
+	assert_true(distinct[0].ball == plain[0].ball && distinct[0].pocket == plain[0].pocket &&
+	            distinct[0].kind == plain[0].kind);
+}
+
 /// Without a time budget the result depends on the input alone: 1 and 2 threads agree bit for bit.
 static void test_threads_agree(void **state) {
 	(void)state;
@@ -265,7 +287,7 @@ int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_names),         cmocka_unit_test(test_straight_in),
 		cmocka_unit_test(test_blocked_finds_a_kick), cmocka_unit_test(test_nine_ball_rules),
-		cmocka_unit_test(test_threads_agree), cmocka_unit_test(test_time_budget),
+		cmocka_unit_test(test_threads_agree), cmocka_unit_test(test_time_budget), cmocka_unit_test(test_distinct),
 		cmocka_unit_test(test_bad_input),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -36,6 +36,7 @@ def request(rid, doc, **kw):
     msg.has_ball, msg.ball = "ball" in kw, kw.get("ball", 0)
     msg.top, msg.samples, msg.seed = kw.get("top", 0), kw.get("samples", 0), kw.get("seed", 0)
     msg.time_budget, msg.position = kw.get("time_budget", 0.0), kw.get("position", False)
+    msg.distinct = kw.get("distinct", False)
     return msg.encode()
 
 

@@ -138,6 +138,29 @@ void fit_table_values(const fit_problem *pb, const double *x, pool_params *param
 /// straight line through them before anything can have hit it); false when there are too few.
 bool fit_guess_from_tracks(const fit_shot *shot, const pool_params *params, double *phi, double *speed);
 
+// ---- synthetic shots (trials and benchmarks) ---------------------------------------------------
+
+#define FIT_SYNTHETIC_BALLS 3
+
+/// What made a synthetic shot.
+typedef struct fit_synthetic {
+	pool_ball_state balls[FIT_SYNTHETIC_BALLS]; ///< the layout (the shot's scenario points here)
+	pool_strike strike;
+	pool_params params;
+} fit_synthetic;
+
+/// True values of the free table parameters, each uniform in its measured range
+/// (docs/validation.md); the others stay as *p has them.
+void fit_random_table(uint64_t seed, const bool *free_table, pool_params *p);
+
+/// Shot `index` of `seed`: the cue ball, an object ball 0.3 to 1.2 m away hit with a cut of up to
+/// 70 % of a full ball's offset, a third ball anywhere, a strike of 1 to 3 m/s with tip offsets
+/// within 0.4 R, on a table with the parameters `table`; recorded at rate frames/s with noise of
+/// sd sigma; its start the default table, the direction half a degree and the speed 10 % off (at
+/// random), no spin. *truth must outlive *shot. Returns 0, or -1 (the library failed).
+int fit_synthetic_shot(uint64_t seed, long index, const pool_params *table, double rate, double sigma,
+                       fit_synthetic *truth, fit_shot *shot);
+
 // ---- residuals --------------------------------------------------------------------------------
 
 /// A simulation per worker, reused for every evaluation it runs.

@@ -155,6 +155,35 @@ static int run_start(fit_ls *ls, double *x0, bool staged, size_t *iterations, do
 	}
 }
 
+/// Each shot's strike fitted alone, the table held at its start (a small problem per shot), into
+/// x, the start otherwise: a start for the joint fit near its minimum, whatever the number of
+/// shots. Returns 0, or the failing fit's status.
+static int shot_by_shot(const fit_problem *pb, const fit_options *o, double *x) {
+	fit_start_vector(pb, x);
+	for (int s = 0; s < pb->shot_count; ++s) {
+		fit_problem one = *pb;
+		one.shots = &pb->shots[s];
+		one.shot_count = 1;
+		memset(one.free_table, 0, sizeof one.free_table);
+		one.table_free = 0;
+		one.p = pb->shot_free;
+		one.n_obs = 2 * (size_t)pb->shots[s].obs_count;
+		one.n = one.n_obs + (size_t)one.p;
+		fit_options quiet = *o;
+		quiet.quiet = true;
+		quiet.profile = FIT_INTERVALS_WALD; // only the values are wanted
+		fit_solution sol;
+		int status = fit_solve(&one, &quiet, &sol);
+		if (status)
+			return status;
+		// The shot's values, in the joint vector's slots (the launch speed is the same quantity
+		// in both: the table's fixed parameters do not enter it).
+		memcpy(x + pb->table_free + s * pb->shot_free, sol.x, (size_t)pb->shot_free * sizeof *x);
+		fit_solution_free(&sol);
+	}
+	return 0;
+}
+
 void fit_solution_free(fit_solution *s) {
 	free(s->x);
 	free(s->est);
@@ -179,7 +208,7 @@ int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
 	out->correlation = calloc(p * p, sizeof *out->correlation);
 	out->shot_rms = calloc((size_t)pb->shot_count, sizeof *out->shot_rms);
 	const int start_count = o->starts < 1 ? 1 : o->starts, retries = o->retries > 0 ? o->retries : 0;
-	double *starts = malloc((size_t)(start_count + retries + 2) * p * sizeof *starts);
+	double *starts = malloc((size_t)(start_count + retries + 3) * p * sizeof *starts);
 	double *costs = malloc((size_t)(start_count + retries) * sizeof *costs);
 	fit_ls ls;
 	bool ready = out->x && out->est && out->correlation && out->shot_rms && starts && costs;
@@ -190,7 +219,17 @@ int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
 		fprintf(stderr, "%s: out of memory\n", FIT_PROGRAM);
 		return POOL_EXIT_INTERNAL;
 	}
-	int given = given_starts(pb, starts), status = 0, best = -1;
+	// A fit of several shots, or of the table's parameters, starts from each shot fitted alone
+	// (the table held at its start), over the growing horizon like the others: early stages fix
+	// what the strikes already agree on, later ones the table, whose wrong start can have bent
+	// some shot's own fit. The other staged starts follow only when it ends worse than the
+	// tracks' noise.
+	const bool joint = pb->shot_count > 1 || pb->table_free > 0;
+	int status = 0, best = -1, given = 0;
+	if (joint && (status = shot_by_shot(pb, o, starts)) == 0)
+		given = 1;
+	if (status == 0)
+		given += given_starts(pb, starts + (size_t)given * p);
 	if (given > start_count)
 		given = start_count;
 	uint64_t rng = o->seed;
@@ -203,9 +242,14 @@ int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
 		fit_start_vector(pb, origin);
 	for (int k = 0; status == 0 && k < start_count + retries; ++k) {
 		double *x0 = starts + (size_t)k * p;
-		const bool retry = k >= start_count;
+		const bool retry = k >= start_count, prefit = joint && k == 0;
 		if (retry && !(costs[best] > enough)) // (a NAN noise: no retries)
 			break;
+		if (joint && k > 0 && k < given && !(costs[best] > enough)) {
+			costs[k] = INFINITY; // the shot-by-shot start fits: no staged start needed
+			out->starts = k + 1;
+			continue;
+		}
 		if (retry)
 			retry_start(pb, origin, &rng, x0);
 		else if (k >= given) // near the best so far
@@ -218,7 +262,7 @@ int fit_solve(const fit_problem *pb, const fit_options *o, fit_solution *out) {
 		}
 		if (!o->quiet)
 			fprintf(stderr, "%s: start %d of %d (%s): %zu iterations, rms %.3g m%s\n", FIT_PROGRAM, k + 1,
-			        start_count, retry ? "retry" : k < given ? "staged" : "near the best", iterations,
+			        start_count, retry ? "retry" : prefit ? "shot by shot" : k < given ? "staged" : "near the best", iterations,
 			        sqrt(fit_sum_squares(ls.cached_f, pb->n_obs) / (double)pb->n_obs),
 			        gsl_status == GSL_SUCCESS ? "" : gsl_status == GSL_EMAXITER ? " (iteration limit)" : " (stopped)");
 		if (best < 0 || costs[k] < costs[best]) {

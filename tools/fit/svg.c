@@ -33,7 +33,7 @@ static void tracks(pool_svg *g, const fit_problem *pb, int s, const double *x, f
 			continue;
 		int id = sc->balls[b].id;
 		pool_svg_put(g, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"%s\"%s stroke-opacity=\"0.9\" points=\"",
-		             id == 0 ? "#ffffff" : pool_svg_ball_colour(id), dashed ? "1.5" : "2",
+		             id == 0 ? "#ffffff" : pool_svg_ball_colour(id), dashed ? "1.5" : "1.2",
 		             dashed ? " stroke-dasharray=\"6 4\"" : "");
 		for (double t = 0.0;; t += dt) {
 			if (t > end)
@@ -83,7 +83,7 @@ char *fit_svg(const fit_problem *pb, const fit_solution *s) {
 		tracks(&g, pb, k, s->x, w, false, observed);
 		for (long i = 0; i < sh->obs_count; ++i) { // the observations over the fitted tracks
 			const fit_observation *o = &sh->obs[i];
-			pool_svg_put(&g, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"1.6\" fill=\"%s\" stroke=\"black\" "
+			pool_svg_put(&g, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2.2\" fill=\"%s\" fill-opacity=\"0.6\" stroke=\"black\" "
 			             "stroke-width=\"0.4\"/>\n", pool_svg_x(o->x), pool_svg_y(&g, o->y),
 			             pool_svg_ball_colour(sc->balls[o->ball].id));
 		}

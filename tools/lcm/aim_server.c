@@ -118,6 +118,7 @@ static int apply_request(const server *sv, const pool_lcm_aim_request_t *rq, con
 	def->time_budget = budget;
 	def->threads = (int)sv->threads;
 	def->position = rq->position;
+	def->distinct = rq->distinct;
 	return 0;
 }
 

@@ -57,6 +57,8 @@ typedef struct pool_aim_def {
 	                               ///< input alone, not on the threads or the machine)
 	int threads;                   ///< worker threads; 0 = the online CPUs
 	bool position;                 ///< score where the cue ball ends (pool_aim_shot.position)
+	bool distinct;                 ///< one shot per ball, pocket, kind, second ball and cushion (its
+	                               ///< best speed and spin), so the K shown are K different shots
 } pool_aim_def;
 
 /// One shot found.

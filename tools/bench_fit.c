@@ -1,0 +1,58 @@
+// pool-bench-fit: seconds for pool-fit on one shot and on 20 shots together. The shots are
+// pool-fit-trials' synthetic ones (fit/synthetic.c: 3 balls, 1-3 m/s, tracks at 100 Hz with 1 mm
+// of noise); one shot fits its strike (speed, phi, a, b), 20 shots their strikes and a shared
+// cloth and cushion (mu_slide, mu_roll, e_cushion: 83 parameters). Median and minimum of RUNS
+// fits each, on every core, with the machine. docs/measurements.md "pool-fit".
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_util.h"
+#include "fit/fit.h"
+
+#define RUNS 5
+#define MANY 20
+
+static void bench(const char *name, int shots, const char *spec) {
+	fit_synthetic *truth = calloc((size_t)shots, sizeof *truth);
+	fit_problem pb = {.shot_count = shots, .threads = pool_bench_cpus_online() > 0 ? pool_bench_cpus_online() : 1};
+	pb.shots = calloc((size_t)shots, sizeof *pb.shots);
+	if (!truth || !pb.shots || fit_parse_spec(spec, pb.free_shot, pb.free_table) != 0)
+		exit(1);
+	pool_params table = pool_default_params();
+	fit_random_table(7, pb.free_table, &table);
+	for (int k = 0; k < shots; ++k)
+		if (fit_synthetic_shot(7, k, &table, 100.0, 0.001, &truth[k], &pb.shots[k]) != 0)
+			exit(1);
+	if (fit_problem_setup(&pb, spec) != 0)
+		exit(1);
+	fit_options o = {.starts = 6, .max_iterations = 200, .seed = 1, .retries = 8, .quiet = getenv("POOL_BENCH_FIT_VERBOSE") == NULL};
+	double seconds[RUNS];
+	fit_solution sol = {0};
+	long observations = (long)(pb.n_obs / 2);
+	for (int r = 0; r < RUNS; ++r) {
+		fit_solution_free(&sol);
+		double t0 = pool_bench_now_s();
+		if (fit_solve(&pb, &o, &sol) != 0)
+			exit(1);
+		seconds[r] = pool_bench_now_s() - t0;
+	}
+	pool_bench_summary s = pool_bench_summarise(seconds, RUNS);
+	printf("%-22s %3d parameters, %6ld observations: median %.3f s, min %.3f s; rms %.3f mm, %d starts, %s "
+	       "intervals\n", name, pb.p, observations, s.median, s.min, 1e3 * sol.rms, sol.starts,
+	       sol.profiled ? "profile" : "wald");
+	fit_solution_free(&sol);
+	for (int k = 0; k < shots; ++k)
+		free(pb.shots[k].obs);
+	free(pb.shots);
+	free(truth);
+}
+
+int main(void) {
+	char cpu[256];
+	printf("pool-bench-fit: %s, %ld CPUs online; tracks at 100 Hz, sigma 1 mm; %d runs\n",
+	       pool_bench_cpu_model(cpu, sizeof cpu), pool_bench_cpus_online(), RUNS);
+	bench("one shot, strike", 1, "strike");
+	bench("20 shots, one table", MANY, "strike,mu_slide,mu_roll,e_cushion");
+	return 0;
+}
