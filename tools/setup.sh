@@ -47,3 +47,8 @@ fi
 if ! "$VENV/bin/python" -c "import dask.distributed, numpy; assert numpy.__version__ == '1.26.4'" 2>/dev/null; then
   "$VENV/bin/pip" install -q --disable-pip-version-check "numpy==1.26.4" "dask[distributed]==2026.8.0"
 fi
+# Gymnasium for libpool.gym and its tests (tests/games/test_gym.py); also the extra [gym] of
+# pip install ./python.
+if ! "$VENV/bin/python" -c "import gymnasium; assert gymnasium.__version__ == '1.4.0'" 2>/dev/null; then
+  "$VENV/bin/pip" install -q --disable-pip-version-check "gymnasium==1.4.0"
+fi

@@ -22,6 +22,11 @@ message(STATUS "find_package: ${out}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the find_package consumer failed: ${rc}")
 endif()
+execute_process(COMMAND ${WORK_DIR}/build/consumer_games RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+message(STATUS "find_package: ${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the find_package games consumer failed: ${rc}")
+endif()
 
 # pkg-config, as the README's one-line build does it.
 find_program(PKG_CONFIG NAMES pkg-config pkgconf REQUIRED)
