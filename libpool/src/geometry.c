@@ -40,13 +40,54 @@ pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double a
 	}
 }
 
+int pool_nose_ends(const pool_table_def *table, pool_rail rail, double ends[4]) {
+	const double len = pool_rail_along_x(rail) ? table->length : table->width;
+	const double corner = table->corner_mouth / sqrt(2.0);
+	int count = 0;
+	if (corner > 0.0 && corner < 0.5 * len) {
+		ends[count++] = corner;
+		ends[count++] = len - corner;
+	}
+	if (pool_rail_along_x(rail) && table->side_mouth > 0.0) {
+		const double a = 0.5 * (len - table->side_mouth), b = 0.5 * (len + table->side_mouth);
+		if (a > corner)
+			ends[count++] = a;
+		if (b < len - corner)
+			ends[count++] = b;
+	}
+	return count;
+}
+
+int pool_nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 *point) {
+	const int along_x = pool_rail_along_x(rail);
+	const double along = along_x ? pos.x : pos.y;
+	double at = along;
+	if (pool_pocket_at(table, rail, along) != POOL_POCKET_NONE) {
+		double ends[4], dist = INFINITY;
+		const int n = pool_nose_ends(table, rail, ends);
+		if (n == 0)
+			return 0;
+		for (int k = 0; k < n; ++k)
+			if (fabs(ends[k] - along) < dist) {
+				dist = fabs(ends[k] - along);
+				at = ends[k];
+			}
+	}
+	const double line = pool_rail_nose_line(table, rail);
+	*point = along_x ? pool_v3(at, line, table->cushion_height) : pool_v3(line, at, table->cushion_height);
+	return 1;
+}
+
 pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail) {
-	pool_vec3 nose = pos; // nearest point of the nose line: same coordinate along the rail
-	nose.z = table->cushion_height;
-	if (pool_rail_along_x(rail))
-		nose.y = pool_rail_nose_line(table, rail);
-	else
-		nose.x = pool_rail_nose_line(table, rail);
+	pool_vec3 nose;
+	if (!pool_nose_nearest(table, rail, pos, &nose)) { // (no nose on the rail: its line, as ever)
+		nose = pos;
+		nose.z = table->cushion_height;
+		if (pool_rail_along_x(rail))
+			nose.y = pool_rail_nose_line(table, rail);
+		else
+			nose.x = pool_rail_nose_line(table, rail);
+	}
 	pool_vec3 d = pool_v3_sub(pos, nose);
 	return pool_v3_scale(d, 1.0 / pool_v3_len(d));
 }
@@ -79,4 +120,23 @@ int pool_table_cushions_near(const pool_table_def *table, double contact_distanc
 		++count;
 	}
 	return count;
+}
+
+double pool_table_nose_gap(const pool_table_def *table, pool_vec3 pos, double R, pool_rail *rail) {
+	double best = INFINITY;
+	*rail = POOL_RAIL_NONE;
+	for (int r = POOL_RAIL_SOUTH; r <= POOL_RAIL_EAST; ++r) {
+		const pool_rail rr = (pool_rail)r;
+		const int along_x = pool_rail_along_x(rr);
+		if (pool_pocket_at(table, rr, along_x ? pos.x : pos.y) != POOL_POCKET_NONE)
+			continue;
+		const double in = pool_rail_side(rr) * (pool_rail_nose_line(table, rr) - (along_x ? pos.y : pos.x));
+		const double up = pos.z - table->cushion_height;
+		const double gap = sqrt(in * in + up * up) - R;
+		if (gap < best) {
+			best = gap;
+			*rail = rr;
+		}
+	}
+	return best;
 }

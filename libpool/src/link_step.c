@@ -134,14 +134,13 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 			++count;
 		}
 		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
-			const int along_x = pool_rail_along_x((pool_rail)rail);
-			const double across = (along_x ? pa.y : pa.x) - pool_rail_nose_line(table, (pool_rail)rail);
-			const double up = pa.z - table->cushion_height;
-			const double gap = sqrt(across * across + up * up) - R;
-			if (!(gap < sc->reach + POOL_LINK_MARGIN))
+			// The nose: its line, ending at the pocket mouths (over a mouth there is no nose but its
+			// end: the world pockets a ball crossing the contact line there).
+			pool_vec3 nose;
+			if (!pool_nose_nearest(table, (pool_rail)rail, pa, &nose))
 				continue;
-			// Inside a pocket mouth there is no nose: the world pockets a ball crossing there.
-			if (pool_pocket_at(table, (pool_rail)rail, along_x ? pa.x : pa.y) != POOL_POCKET_NONE)
+			const double gap = pool_v3_len(pool_v3_sub(pa, nose)) - R;
+			if (!(gap < sc->reach + POOL_LINK_MARGIN))
 				continue;
 			if (out) {
 				link_contact *c = &out[count];

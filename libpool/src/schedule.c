@@ -6,8 +6,47 @@
 
 #include <math.h>
 
+#include "geometry.h"
 #include "predict.h"
 #include "vec3.h"
+
+// When a linked ball (moving uniformly over its step: its segment has no acceleration) leaves
+// play within `window`: crossing a rail's contact line over a pocket mouth below the nose's
+// height (the step's LCP holds it off the noses, but there is no nose there: it falls in), or,
+// above the noses, the table's edge (thrown off the table); INFINITY when neither. The step's
+// LCP keeps it inside the contact lines elsewhere.
+static double linked_exit(const pool_sim *sim, const pool_ball_state *s, double window, pool_event_type *kind,
+                          pool_rail *rail, pool_pocket *pocket) {
+	const pool_table_def *table = &sim->def.table;
+	double best = INFINITY;
+	for (int r = POOL_RAIL_SOUTH; r <= POOL_RAIL_EAST; ++r) {
+		const pool_rail rr = (pool_rail)r;
+		const int along_x = pool_rail_along_x(rr);
+		const double side = pool_rail_side(rr);
+		const double q0 = along_x ? s->pos.y : s->pos.x, vq = along_x ? s->vel.y : s->vel.x;
+		const double a0 = along_x ? s->pos.x : s->pos.y, va = along_x ? s->vel.x : s->vel.y;
+		if (!(side * vq > 0.0))
+			continue; // not moving out across this rail
+		// The contact line, over a mouth and below the nose: a pocket.
+		const double tl = fmax((pool_rail_contact_line(table, sim->dc, rr) - q0) / vq, 0.0);
+		const pool_pocket pk = pool_pocket_at(table, rr, a0 + va * tl);
+		if (tl < best && tl <= window && pk != POOL_POCKET_NONE && s->pos.z + s->vel.z * tl < table->cushion_height) {
+			best = tl;
+			*kind = POOL_EVENT_POCKET;
+			*rail = rr;
+			*pocket = pk;
+		}
+		// The table's edge, the nose line's plane: off the table.
+		const double te = fmax((pool_rail_nose_line(table, rr) - q0) / vq, 0.0);
+		if (te < best && te <= window) {
+			best = te;
+			*kind = POOL_EVENT_OFF_TABLE;
+			*rail = rr;
+			*pocket = POOL_POCKET_NONE;
+		}
+	}
+	return best;
+}
 
 void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
 	const pool_params *p = &sim->def.params;
@@ -23,19 +62,19 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	if (!b->active)
 		return;
 	if (s->motion == POOL_MOTION_LINKED) {
-		// The cluster's step, or a pocket first: the step's LCP holds a linked ball off the
-		// rails except inside a pocket mouth, where it crosses the contact line and falls.
+		// The cluster's step, or leaving play first (linked_exit).
 		b->own_time = pool_link_next_step(&sim->link, i);
 		b->own_kind = POOL_EVENT_LINK_STEP;
-		pool_rail rail;
-		pool_pocket pocket;
 		const double window = fmin(b->own_time, sim->def.max_time) - t;
 		if (!(window > 0.0))
 			return;
-		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &rail, &pocket);
-		if (tc < window && pocket != POOL_POCKET_NONE) {
+		pool_event_type kind = POOL_EVENT_POCKET;
+		pool_rail rail = POOL_RAIL_NONE;
+		pool_pocket pocket = POOL_POCKET_NONE;
+		const double tc = linked_exit(sim, s, window, &kind, &rail, &pocket);
+		if (tc < window) {
 			b->own_time = t + tc;
-			b->own_kind = POOL_EVENT_POCKET;
+			b->own_kind = kind;
 			b->own_rail = rail;
 			b->own_pocket = pocket;
 		}
@@ -46,7 +85,10 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 		const double window = fmax(sim->def.max_time - t, 0.0);
 		const double dt = pool_predict_flight(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &b->own_kind,
 		                                      &b->own_rail, &b->own_pocket);
-		b->own_time = t + dt;
+		// Gravity ends every flight (params.g > 0), so nothing within the window means the
+		// flight's next event lies after max_time, not that none comes: the shot then stops at
+		// max_time (POOL_STOP_MAX_TIME), never "at rest" with a ball in the air.
+		b->own_time = isfinite(dt) ? t + dt : pool_schedule_beyond(sim);
 		return;
 	}
 	if (!b->seg.model->on_cloth)

@@ -22,6 +22,7 @@
 
 #include "contact.h"
 #include "error.h"
+#include "geometry.h"
 #include "handlers.h"
 #include "memory.h"
 #include "models.h"
@@ -51,16 +52,33 @@ pool_sim_def pool_default_sim_def(void) {
 	return def;
 }
 
+/// The highest nose accepted, in ball radii (validate_def says why).
+#define POOL_NOSE_HEIGHT_MAX 1.9
+
 static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 	pool_result r;
 	if (!def)
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "def: missing");
 	if ((r = pool_table_def_validate(&def->table, error)) || (r = pool_params_validate(&def->params, error)))
 		return r;
+	// The nose must hold a ball back (docs/physics.md "Frame, units, defaults"). At or below
+	// the ball's centre it pushes a ball pressed into it upwards, up and over the cushion, whose
+	// top libpool does not model; near the ball's top its contact pushes the ball into the cloth
+	// far harder than it holds it back (at 1.9 R, 2.3 times: the normal is 64 degrees from the
+	// horizontal), and the ball wedges between nose and cloth, which rigid contacts resolve
+	// only in the limit (the soak's shots fail from 1.998 R up). Measured tables are 1.2-1.4 R.
+	// Such tables are refused rather than simulated wrongly.
 	const double R = def->params.ball_radius;
-	if (!(def->table.cushion_height < 2.0 * R))
+	if (!(def->table.cushion_height > R))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
-		                      "table.cushion_height: must be < 2 params.ball_radius (%g m)", 2.0 * R);
+		                      "table.cushion_height: must be > params.ball_radius (%g m): a nose at or below the "
+		                      "ball's centre pushes the ball up and over the cushion (docs/physics.md)",
+		                      R);
+	if (!(def->table.cushion_height <= POOL_NOSE_HEIGHT_MAX * R))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "table.cushion_height: must be <= %g params.ball_radius (%g m): a nose near the ball's "
+		                      "top wedges the ball against the cloth instead of holding it back (docs/physics.md)",
+		                      POOL_NOSE_HEIGHT_MAX, POOL_NOSE_HEIGHT_MAX * R);
 	if (!(def->table.length > 2.0 * R && def->table.width > 2.0 * R))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "table.width: must be > 2 params.ball_radius");
 	if (isnan(def->max_time) || !(def->max_time > 0.0))
@@ -107,9 +125,14 @@ static pool_result link_reserve(void *ctx, int events, int states) {
 	return pool_history_reserve(&sim->history, &sim->alloc, events, states);
 }
 
+static int link_room(void *ctx) {
+	const pool_sim *sim = ctx;
+	return sim->def.max_events - sim->history.n_events;
+}
+
 static void bind_link(pool_sim *sim) {
 	const pool_link_world world = {sim,         link_state_at, link_begin_segment, link_refresh,
-	                               link_changed, link_record,  link_reserve};
+	                               link_changed, link_record,  link_reserve,       link_room};
 	pool_link_init(&sim->link, &sim->def, sim->dc, &sim->alloc, &world);
 }
 
@@ -123,6 +146,7 @@ static void clear(pool_sim *sim) {
 	sim->predicted = 0;
 	sim->started = 0;
 	sim->noop_streak = 0;
+	sim->noop_time = -INFINITY;
 	sim->failed = POOL_OK;
 	sim->last_error.message[0] = '\0';
 	pool_history_clear(&sim->history);
@@ -255,6 +279,13 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	const double x = ball->pos.x, y = ball->pos.y;
 	if (x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol)
 		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
+	// Above the cloth a ball inside its contact lines can still be inside a cushion's nose (on the
+	// cloth the lines are exactly where it touches one).
+	pool_rail nose_rail;
+	const double nose_gap = pool_table_nose_gap(&sim->def.table, ball->pos, R, &nose_rail);
+	if (ball->pos.z > R + tol && !(nose_gap >= -tol))
+		return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
+		                      pool_rail_name(nose_rail), -nose_gap);
 	for (int j = 0; j < sim->n; ++j) {
 		double d = pool_v3_len(pool_v3_sub(ball->pos, sim->cur[j].pos));
 		if (d < 2.0 * R - tol)
@@ -316,6 +347,22 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 /// Consecutive no-op contacts (grazes) skipped before one is recorded anyway.
 #define NOOP_LIMIT 8
 
+// 1 when the handler changed nothing of the states before[0..count) of the balls inv[0..count)
+// (its results s) but what deriving a state from the same velocities changes (a vertical speed
+// below POOL_APPROACH_EPS dropped on the cloth): no impulse acted.
+static int no_impulse(const pool_sim *sim, const int *inv, const pool_ball_state *s, const pool_ball_state *before,
+                      int count) {
+	if (memcmp(s, before, sizeof s[0] * (size_t)count) == 0)
+		return 1;
+	pool_ball_state tidy[2];
+	for (int k = 0; k < count; ++k) {
+		tidy[k] = before[k];
+		pool_motion_after_impulse(&sim->def, &tidy[k]);
+	}
+	pool_link_keep_linked(&sim->link, inv, tidy, count);
+	return memcmp(s, tidy, sizeof s[0] * (size_t)count) == 0;
+}
+
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.
 static pool_result process(pool_sim *sim, int slot) {
 	const pool_event_key key = sim->keys[slot];
@@ -345,6 +392,11 @@ static pool_result process(pool_sim *sim, int slot) {
 		}
 		count = 2;
 	}
+	// A ball LINK holds: its cluster's step ends here, at the length it lasted, and the event
+	// acts on the states the step left (a cluster's balls are the solver's, not the world's).
+	const pool_result cut = pool_link_cut(&sim->link, inv, count, now);
+	if (cut || pool_link_starved(&sim->link))
+		return cut;
 	pool_ball_state s[2], before[2];
 	for (int k = 0; k < count; ++k) {
 		pool_world_state_now(sim, inv[k], now, &s[k]);
@@ -356,13 +408,14 @@ static pool_result process(pool_sim *sim, int slot) {
 	const int apart = type == POOL_EVENT_BALL_BALL &&
 	                  pool_v3_len(pool_v3_sub(s[0].pos, s[1].pos)) - 2.0 * sim->def.params.ball_radius > POOL_TOUCH_TOLERANCE;
 	const int flags = handle && !apart ? handle(&ctx, type, s, count) : 0;
+	pool_link_keep_linked(&sim->link, inv, s, count); // (a handler derives a motion state from velocities)
 	// A graze: the prediction found the pair touching while approaching by a rounding-level
 	// speed, and at the event they are already parting, so Petit's law gave no impulse and the
 	// states are unchanged. That is no collision: nothing is recorded (a player's "first ball
 	// hit" must not be a ball that was never touched) and the pair is predicted again from here,
 	// where the contact rule sees it parting. A run of such no-ops at one instant (never seen)
 	// would be recorded after NOOP_LIMIT, so the shot still makes progress to max_events.
-	const int unchanged = flags == 0 && memcmp(s, before, sizeof s[0] * (size_t)count) == 0;
+	const int unchanged = flags == 0 && no_impulse(sim, inv, s, before, count);
 	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
 	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
 	// persistent contact by definition: LINK takes it at once (no event of its own is recorded).
@@ -373,6 +426,10 @@ static pool_result process(pool_sim *sim, int slot) {
 		sim->processed = now;
 		return taken;
 	}
+	if (type == POOL_EVENT_BALL_BALL && unchanged && now > sim->noop_time) {
+		sim->noop_streak = 0; // (a run at one instant is what the limit bounds)
+		sim->noop_time = now;
+	}
 	if (type == POOL_EVENT_BALL_BALL && unchanged && sim->noop_streak < NOOP_LIMIT) {
 		sim->noop_streak++;
 		sim->time = now;
@@ -381,7 +438,6 @@ static pool_result process(pool_sim *sim, int slot) {
 		return POOL_OK;
 	}
 	sim->noop_streak = 0;
-	pool_link_keep_linked(&sim->link, inv, s, count);
 	for (int k = 0; k < count; ++k)
 		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
 	// A pocket event names its pocket, not the rail whose mouth it was.
@@ -427,7 +483,14 @@ int pool_sim_step(pool_sim *sim) {
 	sim->started = 1;
 	// A failed link step (its LCP unsolved, or out of memory) ends the shot with that error:
 	// never silently wrong velocities.
+	const int recorded = sim->history.n_events;
 	const pool_result r = process(sim, pool_event_queue_top(&sim->queue));
+	if (pool_link_starved(&sim->link)) {
+		// LINK needed an event the limit has no room for and did nothing: the event limit cut
+		// the shot here (whatever comes next, even after max_time).
+		sim->stop = POOL_STOP_MAX_EVENTS;
+		return r ? r : sim->history.n_events > recorded;
+	}
 	if (r) {
 		// Out of memory leaves the step undone (it runs again once memory is back); a failed
 		// solve is final.

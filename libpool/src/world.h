@@ -53,7 +53,8 @@ struct pool_sim {
 	pool_stop_reason stop;
 	int predicted; // the queue holds predictions for every body
 	int started;   // an event was recorded: balls can no longer be added
-	int noop_streak; // contacts found to be grazes (no impulse) in a row, not recorded
+	int noop_streak; // contacts found to be grazes (no impulse) in a row at one instant, not recorded
+	double noop_time; // s, that instant
 };
 
 /// Ball i's state at time t, within its current segment (closed form from the segment start).
