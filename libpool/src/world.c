@@ -17,6 +17,7 @@
 // colliding again and again into a cluster solved as one LCP per step, and max_events bounds
 // every other case. Persistent (pushing, resting) contact: link.h.
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -448,11 +449,32 @@ static pool_result process(pool_sim *sim, int slot) {
 	return pool_link_after_event(&sim->link, type, ctx.rail, inv, s, count, now);
 }
 
+// Says in sim->last_error what made the step at `now` fail with r.
+static pool_result step_failed(pool_sim *sim, pool_result r, double now) {
+	if (r == POOL_ERR_OUT_OF_MEMORY) {
+		pool_error_set(&sim->last_error, r,
+		               "t = %.17g s: out of memory; nothing of this step was done, it runs again once memory is back",
+		               now);
+	} else if (r == POOL_ERR_INTERNAL) {
+		double residual = 0.0;
+		int balls = 0, contacts = 0;
+		pool_link_failure(&sim->link, &residual, &balls, &contacts);
+		pool_error_set(&sim->last_error, r,
+		               "link step at t = %.17g s: the LCP of a cluster of %d balls (%d contacts) has no solution within "
+		               "its residual limit %g (best residual %.3g): the shot cannot go on",
+		               now, balls, contacts, POOL_LINK_RESIDUAL_MAX, residual);
+	} else {
+		pool_error_set(&sim->last_error, r, "event at t = %.17g s: %s", now, pool_result_str(r));
+	}
+	return r;
+}
+
 int pool_sim_step(pool_sim *sim) {
 	if (!sim)
 		return POOL_ERR_INVALID_ARGUMENT;
 	if (sim->failed)
-		return sim->failed;
+		return sim->failed; // (last_error says why, since the step that failed)
+	sim->last_error.message[0] = '\0';
 	if (sim->stop != POOL_STOP_NONE)
 		return 0;
 	if (!sim->predicted)
@@ -475,28 +497,30 @@ int pool_sim_step(pool_sim *sim) {
 		return 0;
 	}
 	// Room for the event and the LINK events it can bring (each with up to every ball's state):
-	// a collision between two clusters' balls dissolves both (two link_end) and may start a
-	// cluster (link_begin); a step releases its loose balls (link_end) and records itself. So
-	// nothing past this point runs out of memory but a link step's LCP workspace.
-	if (pool_history_reserve(&sim->history, &sim->alloc, 4, 2 + 3 * sim->n))
-		return POOL_ERR_OUT_OF_MEMORY;
+	// a collision between two clusters' balls cuts both steps (two link_step), dissolves both (two
+	// link_end) and may start a cluster (link_begin); a step releases its loose balls (link_end)
+	// and records itself. So nothing past this point runs out of memory but a link step's LCP
+	// workspace (and the history, should a step's mergers and strays need more: it grows then).
+	if (pool_history_reserve(&sim->history, &sim->alloc, 6, 2 + 5 * sim->n))
+		return step_failed(sim, POOL_ERR_OUT_OF_MEMORY, top->time);
 	sim->started = 1;
 	// A failed link step (its LCP unsolved, or out of memory) ends the shot with that error:
 	// never silently wrong velocities.
 	const int recorded = sim->history.n_events;
+	const double now = top->time;
 	const pool_result r = process(sim, pool_event_queue_top(&sim->queue));
 	if (pool_link_starved(&sim->link)) {
 		// LINK needed an event the limit has no room for and did nothing: the event limit cut
 		// the shot here (whatever comes next, even after max_time).
 		sim->stop = POOL_STOP_MAX_EVENTS;
-		return r ? r : sim->history.n_events > recorded;
+		return r ? step_failed(sim, r, now) : sim->history.n_events > recorded;
 	}
 	if (r) {
 		// Out of memory leaves the step undone (it runs again once memory is back); a failed
 		// solve is final.
 		if (r != POOL_ERR_OUT_OF_MEMORY)
 			sim->failed = r;
-		return r;
+		return step_failed(sim, r, now);
 	}
 	return 1;
 }
@@ -509,8 +533,11 @@ pool_result pool_sim_run(pool_sim *sim) {
 }
 
 pool_result pool_sim_run_until(pool_sim *sim, double t) {
-	if (!sim || isnan(t))
+	if (!sim)
 		return POOL_ERR_INVALID_ARGUMENT;
+	if (isnan(t))
+		return pool_error_set(&sim->last_error, POOL_ERR_INVALID_ARGUMENT, "run_until: t must be a time in s, not NaN");
+	sim->last_error.message[0] = '\0';
 	for (;;) {
 		if (sim->stop != POOL_STOP_NONE)
 			return POOL_OK;
@@ -545,11 +572,28 @@ int pool_sim_ball_count(const pool_sim *sim) { return sim ? sim->n : 0; }
 
 const pool_ball_state *pool_sim_balls(const pool_sim *sim) { return sim ? sim->cur : NULL; }
 
-pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out) {
-	if (!sim || !out || isnan(t) || t < 0.0)
-		return POOL_ERR_INVALID_ARGUMENT;
+// The last_error of a read-only call: what a caller reads after it failed. The simulation is
+// not changed otherwise (and, like every call, is not to be shared between threads at once).
+static pool_error *read_error(const pool_sim *sim) { return &((pool_sim *)sim)->last_error; }
+
+// Whether states at t can be read: t a time, and processed (last_error otherwise).
+static pool_result readable(const pool_sim *sim, const char *what, double t) {
+	if (isnan(t) || t < 0.0)
+		return pool_error_set(read_error(sim), POOL_ERR_INVALID_ARGUMENT, "%s: t = %g s: must be a time >= 0", what, t);
 	if (t > sim->processed)
-		return POOL_ERR_STATE;
+		return pool_error_set(read_error(sim), POOL_ERR_STATE,
+		                      "%s: t = %.17g s is past the time processed, %.17g s: run the shot there first", what, t,
+		                      sim->processed);
+	return POOL_OK;
+}
+
+pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out) {
+	if (!sim || !out)
+		return POOL_ERR_INVALID_ARGUMENT;
+	const pool_result r = readable(sim, "state_at", t);
+	if (r)
+		return r;
+	read_error(sim)->message[0] = '\0';
 	pool_history_state_at(&sim->history, &sim->def.params, sim->n, t, out);
 	return POOL_OK;
 }
@@ -560,14 +604,16 @@ pool_result pool_sim_states_at(const pool_sim *sim, const double *times, int cou
 		return POOL_ERR_INVALID_ARGUMENT;
 	// Every time is checked before any state is written, so a failed call leaves out alone.
 	for (int k = 0; k < count; ++k) {
-		const double t = times[k];
-		pool_result r = isnan(t) || t < 0.0 ? POOL_ERR_INVALID_ARGUMENT : t > sim->processed ? POOL_ERR_STATE : POOL_OK;
+		char what[32];
+		snprintf(what, sizeof what, "states_at[%d]", k);
+		const pool_result r = readable(sim, what, times[k]);
 		if (r != POOL_OK) {
 			if (bad_index)
 				*bad_index = k;
 			return r;
 		}
 	}
+	read_error(sim)->message[0] = '\0';
 	for (int k = 0; k < count; ++k)
 		pool_history_state_at(&sim->history, &sim->def.params, sim->n, times[k], out + (size_t)k * (size_t)sim->n);
 	return POOL_OK;
@@ -585,6 +631,8 @@ const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_eve
 	return &sim->history.states[event->first_state];
 }
 
+
+const char *pool_sim_last_error(const pool_sim *sim) { return sim ? sim->last_error.message : "sim: missing"; }
 
 pool_result pool_sim_link_stats(const pool_sim *sim, pool_link_stats *out) {
 	if (!sim || !out)

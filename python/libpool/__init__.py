@@ -645,13 +645,13 @@ class Sim:
     def step(self):
         """Processes the next event; False when the shot is over (see stop_reason)."""
         with self._lock:
-            return _check(_lib().pool_sim_step(self._p())) == 1
+            return self._run_check(_lib().pool_sim_step(self._p())) == 1
 
     def run(self):
         """Runs the shot to its end (rest, max_time or max_events); returns stop_reason. Other
         threads' calls on this Sim, close() included, wait until it returns."""
         with self._lock:
-            _check(_lib().pool_sim_run(self._p()))
+            self._run_check(_lib().pool_sim_run(self._p()))
             return self.stop_reason
 
     def run_until(self, t):
@@ -660,7 +660,15 @@ class Sim:
         if math.isnan(t):
             raise PoolError(_ERR_INVALID_ARGUMENT, "t: must be a time in s, got nan")
         with self._lock:
-            _check(_lib().pool_sim_run_until(self._p(), t))
+            self._run_check(_lib().pool_sim_run_until(self._p(), t))
+
+    def _run_check(self, code):
+        """code of a call that runs the shot; a failure raises PoolError with what the library
+        says it met (pool_sim_last_error: a LINK step's unsolved LCP, memory running out...).
+        Call with the lock held."""
+        if code < 0:
+            raise PoolError(code, _lib().pool_sim_last_error(self._p()).decode("utf-8", "replace"))
+        return code
 
     # results
     @property

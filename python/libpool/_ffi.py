@@ -146,6 +146,7 @@ _PROTOTYPES = {
     "pool_sim_step": (c_int, [_sim_p]),
     "pool_sim_run": (c_int, [_sim_p]),
     "pool_sim_run_until": (c_int, [_sim_p, c_double]),
+    "pool_sim_last_error": (c_char_p, [_sim_p]),
     "pool_sim_stop_reason": (c_int, [_sim_p]),
     "pool_sim_time": (c_double, [_sim_p]),
     "pool_sim_end_time": (c_double, [_sim_p]),

@@ -709,7 +709,8 @@ def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
             if r == 0:
                 r = state_at_(sim, c_double(t_end), c_void_p(final_base + row_size * (i - i0)))
             if r != 0:
-                raise PoolError(r, "shot %d: simulation failed at t = %.17g s" % (i, time_(sim)))
+                raise PoolError(r, "shot %d: simulation failed at t = %.17g s: %s" % (
+                    i, time_(sim), lib.pool_sim_last_error(sim).decode("utf-8", "replace")))
             ev_stop[i] = stop_(sim)
             ev_end[i] = t_end
             if layout.game is not None:

@@ -495,7 +495,10 @@ static void test_memory(void **state) {
 				int n;
 				const pool_event *ev = pool_sim_events(s, &n);
 				const int cut_in_run = pool_sim_ball_count(s) == 16 && n > 0;
+				if (cut_in_run) // the run says what it met, and when
+					assert_non_null(strstr(pool_sim_last_error(s), "out of memory"));
 				assert_int_equal(pool_sim_run(s), POOL_OK);
+				assert_string_equal(pool_sim_last_error(s), "");
 				if (cut_in_run) {
 					++resumed;
 					ev = pool_sim_events(s, &n);
@@ -717,6 +720,39 @@ static void test_max_events_never_exceeded(void **state) {
 	}
 }
 
+// Issue 21: errors during a run say what failed. A state asked past the time processed names the
+// time asked and the time reached, a NaN run_until names it, a run that succeeds leaves nothing
+// (the failed LINK solve and memory running out: test_memory, docs/library.md).
+static void test_last_error(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	pool_sim *sim = make_sim(&def);
+	assert_string_equal(pool_sim_last_error(sim), "");
+	assert_string_equal(pool_sim_last_error(NULL), "sim: missing");
+	pool_ball_state balls[16];
+	const int nb = pool_rack(POOL_RACK_8BALL, &def.table, &def.params, 0.0, balls, 16);
+	for (int i = 0; i < nb; ++i)
+		add_ball(sim, &balls[i]);
+	pool_strike s = pool_break_strike(6.0);
+	assert_int_equal(pool_sim_strike(sim, 0, &s, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run_until(sim, 0.25), POOL_OK);
+	pool_ball_state out[16];
+	assert_int_equal(pool_sim_state_at(sim, 0.5, out), POOL_ERR_STATE);
+	assert_string_equal(pool_sim_last_error(sim), "state_at: t = 0.5 s is past the time processed, 0.25 s: run the shot there first");
+	assert_int_equal(pool_sim_state_at(sim, -1.0, out), POOL_ERR_INVALID_ARGUMENT);
+	assert_string_equal(pool_sim_last_error(sim), "state_at: t = -1 s: must be a time >= 0");
+	const double times[2] = {0.1, 0.3};
+	int bad = -1;
+	assert_int_equal(pool_sim_states_at(sim, times, 2, out, &bad), POOL_ERR_STATE);
+	assert_int_equal(bad, 1);
+	assert_non_null(strstr(pool_sim_last_error(sim), "states_at[1]: t = 0.29999999999999999 s is past the time processed"));
+	assert_int_equal(pool_sim_run_until(sim, NAN), POOL_ERR_INVALID_ARGUMENT);
+	assert_string_equal(pool_sim_last_error(sim), "run_until: t must be a time in s, not NaN");
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	assert_string_equal(pool_sim_last_error(sim), "");
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_stun_shot),       cmocka_unit_test(test_natural_roll_shot),
@@ -728,6 +764,7 @@ int main(void) {
 		cmocka_unit_test(test_rest_never_while_airborne),
 		cmocka_unit_test(test_low_nose_refused),
 		cmocka_unit_test(test_max_events_never_exceeded),
+		cmocka_unit_test(test_last_error),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -113,6 +113,13 @@ POOL_API pool_result pool_sim_run(pool_sim *sim);
 /// Processes every event at or before time t (s), so pool_sim_state_at(sim, t, ...) is final.
 POOL_API pool_result pool_sim_run_until(pool_sim *sim, double t);
 
+/// What the last failed pool_sim_step, pool_sim_run, pool_sim_run_until, pool_sim_state_at or
+/// pool_sim_states_at call met, in words: a LINK step whose LCP could not be solved (its instant,
+/// its cluster's balls and contacts, the residual), memory running out (and when), a time asked
+/// past the time processed (and that time); "" after such a call that succeeded. Valid until the
+/// next call on the simulation; "sim: missing" for NULL.
+POOL_API const char *pool_sim_last_error(const pool_sim *sim);
+
 /// Why the shot ended so far.
 POOL_API pool_stop_reason pool_sim_stop_reason(const pool_sim *sim);
 
