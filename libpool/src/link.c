@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "assert.h"
 #include "contact.h"
 #include "geometry.h"
 #include "handlers.h"
@@ -196,6 +197,7 @@ static void step_end_state(const pool_link *link, int i, double t, pool_ball_sta
 static void end_step_early(pool_link *link, int c, double t);
 
 static void join(pool_link *link, int i, int c, double t) {
+	POOL_ASSERT(i >= 0 && i < link->n && c >= 0 && c < link->n && link->clusters[c].active);
 	if (link->cluster_of[i] == c)
 		return;
 	if (link->cluster_of[i] >= 0) {
@@ -360,6 +362,7 @@ static void end_step_early(pool_link *link, int c, double t) {
 	if (!cl->in_step)
 		return;
 	const double lasted = t - cl->t_start;
+	POOL_ASSERT(lasted >= 0.0 && t <= cl->t_next); // a step is cut inside itself
 	const double share = cl->step_dt > 0.0 ? fmin(fmax(lasted / cl->step_dt, 0.0), 1.0) : 1.0;
 	for (int k = 0; k < link->n; ++k) {
 		if (link->cluster_of[k] != c)

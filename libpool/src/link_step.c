@@ -49,6 +49,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "assert.h"
 #include "geometry.h"
 #include "lemke.h"
 #include "link_problem.h"
@@ -149,6 +150,7 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				c->b = -1;
 				c->rail = rail;
 				c->n = pool_cushion_normal(table, pa, (pool_rail)rail);
+				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12); // a unit normal
 				c->ra = pool_v3_scale(c->n, -R);
 				c->rb = pool_v3(0.0, 0.0, 0.0);
 				c->gap = gap;
@@ -170,6 +172,7 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				c->b = b;
 				c->rail = POOL_RAIL_NONE;
 				c->n = pool_v3_scale(d, 1.0 / dist);
+				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12);
 				c->ra = pool_v3_scale(c->n, -R);
 				c->rb = pool_v3_scale(c->n, R);
 				c->gap = gap;

@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "geometry.h"
+#include "assert.h"
 #include "predict.h"
 #include "vec3.h"
 
@@ -116,6 +117,7 @@ static inline double earlier(double a, double b) { return b < a ? b : a; }
 
 // Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
 static void repredict(pool_sim *sim, int i, double now) {
+	POOL_ASSERT(i >= 0 && i < sim->n);
 	const pool_params *p = &sim->def.params;
 	pool_body *bi = &sim->body[i];
 	pool_event_key best = {INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
@@ -160,6 +162,7 @@ static void repredict(pool_sim *sim, int i, double now) {
 			if (pool_event_key_cmp(&k, &best) < 0) {
 				best = k;
 				bi->partner = j;
+				POOL_ASSERT(bj->active && j != i); // a partner is a ball in play, another one
 			}
 		}
 	}

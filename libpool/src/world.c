@@ -25,6 +25,7 @@
 #include "error.h"
 #include "geometry.h"
 #include "handlers.h"
+#include "invariants.h"
 #include "memory.h"
 #include "models.h"
 #include "motion.h"
@@ -469,9 +470,7 @@ static pool_result step_failed(pool_sim *sim, pool_result r, double now) {
 	return r;
 }
 
-int pool_sim_step(pool_sim *sim) {
-	if (!sim)
-		return POOL_ERR_INVALID_ARGUMENT;
+static int step(pool_sim *sim) {
 	if (sim->failed)
 		return sim->failed; // (last_error says why, since the step that failed)
 	sim->last_error.message[0] = '\0';
@@ -481,6 +480,12 @@ int pool_sim_step(pool_sim *sim) {
 		pool_schedule_predict_all(sim);
 	const pool_event_key *top = sim->n > 0 ? &sim->keys[pool_event_queue_top(&sim->queue)] : NULL;
 	if (!top || !isfinite(top->time)) {
+		// Nothing will happen again: no ball in the air, none moving (a flight always ends, and
+		// a prediction cut at max_time reports an event beyond it, pool_schedule_beyond).
+		for (int i = 0; i < sim->n; ++i)
+			POOL_ASSERT_MSG(!sim->body[i].active || (sim->cur[i].motion != POOL_MOTION_AIRBORNE &&
+			                                         pool_v3_len(sim->cur[i].vel) == 0.0),
+			                "at rest, every ball still");
 		sim->stop = POOL_STOP_REST;
 		sim->processed = INFINITY;
 		return 0;
@@ -523,6 +528,15 @@ int pool_sim_step(pool_sim *sim) {
 		return step_failed(sim, r, now);
 	}
 	return 1;
+}
+
+int pool_sim_step(pool_sim *sim) {
+	if (!sim)
+		return POOL_ERR_INVALID_ARGUMENT;
+	const int r = step(sim);
+	if (r >= 0)
+		pool_world_check(sim); // (the sanitizer build: every invariant after every step)
+	return r;
 }
 
 pool_result pool_sim_run(pool_sim *sim) {
