@@ -12,6 +12,7 @@
 #include "handlers.h"
 #include "memory.h"
 #include "motion.h"
+#include "predict.h"
 #include "vec3.h"
 
 // ---- the world, as LINK may ask it
@@ -669,21 +670,18 @@ static pool_result solve(pool_link *link, pool_cluster *cl, const int *idx, pool
 }
 
 // Ball k (state sk, outside) would collide now with cluster ball i moving at the step's mean
-// velocity (si): their contact is live (gap within POOL_TOUCH_TOLERANCE) and the contact rule
-// (contact.h) has them collide at once, the step's ball moving uniformly. At whatever speed:
-// this contact is the step's own doing, not a hit from outside (where faster than
-// POOL_LINK_IMPACT_SPEED is a collision), and it can only be taken inside the step: as an event
-// at the step's start it would cut the step after no time, undoing what drove it.
+// velocity (si): the schedule's own prediction (predict.h, the contact rule of contact.h), with
+// the step's ball moving uniformly, has them meet at once. At whatever speed: this contact is
+// the step's own doing, not a hit from outside (where faster than POOL_LINK_IMPACT_SPEED is a
+// collision), and it can only be taken inside the step: as an event at the step's start it would
+// cut the step after no time, undoing what drove it, and the cluster would step again for ever.
 static int driven_into(const pool_link *link, const pool_ball_state *si, const pool_ball_state *sk) {
-	const pool_vec3 d = pool_v3_sub(sk->pos, si->pos);
-	const double dist = pool_v3_len(d);
-	if (!(dist > 0.0) || !(dist - 2.0 * link->def->params.ball_radius <= POOL_TOUCH_TOLERANCE))
+	const double R = link->def->params.ball_radius;
+	const pool_vec3 dp = pool_v3_sub(sk->pos, si->pos);
+	if (!(pool_v3_len(dp) - 2.0 * R <= POOL_TOUCH_TOLERANCE))
 		return 0;
-	const double closing = pool_closing_speed(sk->pos, sk->vel, si->pos, si->vel);
-	const pool_vec3 n = pool_v3_scale(d, 1.0 / dist), dv = pool_v3_sub(sk->vel, si->vel);
-	const double vn = pool_v3_dot(n, dv);
-	const double accel = -pool_v3_dot(n, pool_motion_accel(&link->def->params, sk)) - (pool_v3_dot(dv, dv) - vn * vn) / dist;
-	return pool_contact_now(dist - 2.0 * link->def->params.ball_radius, closing, accel);
+	const pool_vec3 da = pool_v3_scale(pool_motion_accel(&link->def->params, sk), 0.5);
+	return pool_predict_ball_ball(dp, pool_v3_sub(sk->vel, si->vel), da, R, POOL_LINK_STEP_TIME) <= 0.0;
 }
 
 // Joins into cluster c the balls in play outside it that the step's mean velocities s[0..m)

@@ -43,7 +43,7 @@ static double triangle_dist2(pool_vec3 a, pool_vec3 b, pool_vec3 c) {
 // curve inside the triangle of its control points P0, P0 + dv T / 2, P0 + dv T + da T^2 (in 3D:
 // airborne balls too); if that triangle stays farther than 2R from the origin, the balls
 // cannot touch. The margin 1e-9 (relative) covers the rounding of the control points.
-static int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
+static inline int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
 	if (!isfinite(T))
 		return 1;
 	if (pool_predict_pair_out_of_reach(dp, dv, da, R, T)) // cheaper still, enough for most pairs
@@ -186,7 +186,12 @@ double pool_predict_flight(const pool_table_def *table, double R, const pool_bal
 		const double n = pool_rail_nose_line(table, rr);
 		const pool_vec3 dp = pool_v3(side * (n - q0), s->pos.z - h, 0.0);
 		const pool_vec3 dv = pool_v3(-side * vq, s->vel.z, 0.0), da = pool_v3(-0.5 * side * aq, 0.5 * acc.z, 0.0);
-		double t = pool_predict_ball_ball(dp, dv, da, 0.5 * R, window);
+		// A ball over a mouth already within R of the line (no nose there): the contact rule, made
+		// for touching bodies, does not apply to that depth; where it comes out of the mouth into
+		// the nose is a root of the distance itself.
+		const int inside = pool_v3_len(dp) < R - POOL_TOUCH_TOLERANCE && pool_pocket_at(table, rr, a0) != POOL_POCKET_NONE;
+		double t = inside ? later_nose_contact(table, rr, dp, dv, da, R, a0, va, aa, 0.0, window)
+		                  : pool_predict_ball_ball(dp, dv, da, 0.5 * R, window);
 		if (t <= window && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) != POOL_POCKET_NONE)
 			t = later_nose_contact(table, rr, dp, dv, da, R, a0, va, aa, t, window);
 		int nose = t <= window && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) == POOL_POCKET_NONE;
@@ -200,11 +205,17 @@ double pool_predict_flight(const pool_table_def *table, double R, const pool_bal
 		}
 		// The nose ends at the mouths' edges: over a mouth, a ball within R of the nose's line
 		// meets its end (a point), or it would come out of the mouth inside the cushion.
+		// (Ends are on the line: a ball that cannot come within R of the line in the window,
+		// most flights, meets none of them; nor one that cannot reach the end itself.)
 		double ends[4];
-		const int n_ends = pool_nose_ends(table, rr, ends);
+		const double w_ends = best < T ? best : T;
+		const double reach = (pool_v3_len(s->vel) + 0.5 * pool_v3_len(acc) * w_ends) * w_ends;
+		const int n_ends = pool_v3_len(dp) - R > reach ? 0 : pool_nose_ends(table, rr, ends);
 		for (int k = 0; k < n_ends; ++k) {
 			const pool_vec3 end = along_x ? pool_v3(ends[k], n, h) : pool_v3(n, ends[k], h);
 			const double w = fmin(best, T);
+			if (pool_v3_len(pool_v3_sub(s->pos, end)) - R > reach)
+				continue;
 			t = pool_predict_ball_ball(pool_v3_sub(s->pos, end), s->vel, pool_v3_scale(acc, 0.5), 0.5 * R, w);
 			if (t <= w && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) != POOL_POCKET_NONE) {
 				best = t;

@@ -356,6 +356,13 @@ static int no_impulse(const pool_sim *sim, const int *inv, const pool_ball_state
                       int count) {
 	if (memcmp(s, before, sizeof s[0] * (size_t)count) == 0)
 		return 1;
+	// (The common case, an impulse, changes a velocity by more than the clean-up of deriving a
+	// state does: vertical speeds below POOL_APPROACH_EPS, components below POOL_REST_EPS.)
+	const double R = sim->def.params.ball_radius;
+	for (int k = 0; k < count; ++k)
+		if (fabs(s[k].vel.x - before[k].vel.x) > POOL_APPROACH_EPS || fabs(s[k].vel.y - before[k].vel.y) > POOL_APPROACH_EPS ||
+		    R * pool_v3_len(pool_v3_sub(s[k].omega, before[k].omega)) > POOL_APPROACH_EPS)
+			return 0;
 	pool_ball_state tidy[2];
 	for (int k = 0; k < count; ++k) {
 		tidy[k] = before[k];
