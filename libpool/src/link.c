@@ -698,6 +698,13 @@ static int drive_in(pool_link *link, int c, const pool_ball_state *s, int m, dou
 		const int cut = other >= 0 && link->clusters[other].in_step;
 		if (cut && link->world.room(link->world.ctx) < 2)
 			continue; // (left to the collision's events, which stop the shot at the limit)
+		// (Positions do not change at t: gather's are good for the cheap test of distance.)
+		int near = 0;
+		for (int q = 0; q < m && !near; ++q)
+			near = pool_v3_len(pool_v3_sub(link->now[k].pos, s[q].pos)) - 2.0 * link->def->params.ball_radius <=
+			       POOL_TOUCH_TOLERANCE;
+		if (!near)
+			continue;
 		pool_ball_state sk;
 		state_at(link, k, t, &sk);
 		if (!in_play(sk.motion))
