@@ -41,19 +41,27 @@ pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double a
 }
 
 int pool_nose_ends(const pool_table_def *table, pool_rail rail, double ends[4]) {
+	// The nose is the rail less its mouths: [0, c] and [len - c, len] at the corners, and on the
+	// long rails [len/2 - w/2, len/2 + w/2]; its ends are where what is left begins and ends
+	// (mouths may overlap on a small table, and leave no nose at all).
 	const double len = pool_rail_along_x(rail) ? table->length : table->width;
 	const double corner = table->corner_mouth / sqrt(2.0);
-	int count = 0;
-	if (corner > 0.0 && corner < 0.5 * len) {
-		ends[count++] = corner;
-		ends[count++] = len - corner;
-	}
+	double lo[2] = {corner, len}, hi[2] = {len - corner, len}; // the nose's pieces, [lo, hi]
+	int pieces = 1;
 	if (pool_rail_along_x(rail) && table->side_mouth > 0.0) {
-		const double a = 0.5 * (len - table->side_mouth), b = 0.5 * (len + table->side_mouth);
-		if (a > corner)
-			ends[count++] = a;
-		if (b < len - corner)
-			ends[count++] = b;
+		lo[1] = 0.5 * (len + table->side_mouth);
+		hi[1] = hi[0];
+		hi[0] = 0.5 * (len - table->side_mouth);
+		pieces = 2;
+	}
+	int count = 0;
+	for (int k = 0; k < pieces; ++k) {
+		if (!(lo[k] < hi[k]))
+			continue; // no nose left there
+		if (lo[k] > 0.0)
+			ends[count++] = lo[k];
+		if (hi[k] < len)
+			ends[count++] = hi[k];
 	}
 	return count;
 }

@@ -1045,18 +1045,27 @@ static inline pool_vec3 hs_nose_point(const pool_sim_def *def, int rail, pool_ve
 	const double len = along_x ? t->length : t->width, along = along_x ? p.x : p.y;
 	double at = along;
 	if (hs_pocket_at(t, rail, along) != POOL_POCKET_NONE) {
+		// The nose: the rail less its mouths (corners [0, c], [len - c, len], the side pocket's
+		// [len/2 -+ w/2] on the long rails), in at most two pieces; its ends bound them.
 		const double corner = t->corner_mouth / sqrt(2.0);
-		double ends[4];
-		int n = 0;
-		if (corner > 0.0 && corner < 0.5 * len) {
-			ends[n++] = corner;
-			ends[n++] = len - corner;
-		}
+		double lo[2] = {corner, len}, hi[2] = {len - corner, len}, ends[4];
+		int pieces = 1, n = 0;
 		if (along_x && t->side_mouth > 0.0) {
-			if (0.5 * (len - t->side_mouth) > corner)
-				ends[n++] = 0.5 * (len - t->side_mouth);
-			if (0.5 * (len + t->side_mouth) < len - corner)
-				ends[n++] = 0.5 * (len + t->side_mouth);
+			lo[1] = 0.5 * (len + t->side_mouth);
+			hi[1] = hi[0];
+			hi[0] = 0.5 * (len - t->side_mouth);
+			pieces = 2;
+		}
+		for (int k = 0; k < pieces; ++k)
+			if (lo[k] < hi[k]) {
+				if (lo[k] > 0.0)
+					ends[n++] = lo[k];
+				if (hi[k] < len)
+					ends[n++] = hi[k];
+			}
+		if (n == 0) { // no nose on this rail: nothing to touch
+			const pool_vec3 far = {1e300, 1e300, 1e300};
+			return far;
 		}
 		double best = INFINITY;
 		for (int k = 0; k < n; ++k)
