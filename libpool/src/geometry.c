@@ -40,30 +40,56 @@ pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double a
 	}
 }
 
-int pool_nose_ends(const pool_table_def *table, pool_rail rail, double ends[4]) {
-	// The nose is the rail less its mouths: [0, c] and [len - c, len] at the corners, and on the
-	// long rails [len/2 - w/2, len/2 + w/2]; its ends are where what is left begins and ends
-	// (mouths may overlap on a small table, and leave no nose at all).
+/// The nose's pieces on a rail, [lo[k], hi[k]] along it: the rail less its mouths, [0, c] and
+/// [len - c, len] at the corners and on the long rails [len/2 - w/2, len/2 + w/2]; returns how
+/// many (mouths may overlap on a small table, and leave no nose at all).
+static int nose_pieces(const pool_table_def *table, pool_rail rail, double lo[2], double hi[2]) {
 	const double len = pool_rail_along_x(rail) ? table->length : table->width;
 	const double corner = table->corner_mouth / sqrt(2.0);
-	double lo[2] = {corner, len}, hi[2] = {len - corner, len}; // the nose's pieces, [lo, hi]
+	double a[2] = {corner, len}, b[2] = {len - corner, len};
 	int pieces = 1;
 	if (pool_rail_along_x(rail) && table->side_mouth > 0.0) {
-		lo[1] = 0.5 * (len + table->side_mouth);
-		hi[1] = hi[0];
-		hi[0] = 0.5 * (len - table->side_mouth);
+		a[1] = 0.5 * (len + table->side_mouth);
+		b[1] = b[0];
+		b[0] = 0.5 * (len - table->side_mouth);
 		pieces = 2;
 	}
 	int count = 0;
+	for (int k = 0; k < pieces; ++k)
+		if (a[k] < b[k]) {
+			lo[count] = a[k];
+			hi[count] = b[k];
+			++count;
+		}
+	return count;
+}
+
+int pool_nose_ends(const pool_table_def *table, pool_rail rail, double ends[4]) {
+	// Where what is left of the rail begins and ends (not the rail's own ends).
+	const double len = pool_rail_along_x(rail) ? table->length : table->width;
+	double lo[2], hi[2];
+	const int pieces = nose_pieces(table, rail, lo, hi);
+	int count = 0;
 	for (int k = 0; k < pieces; ++k) {
-		if (!(lo[k] < hi[k]))
-			continue; // no nose left there
 		if (lo[k] > 0.0)
 			ends[count++] = lo[k];
 		if (hi[k] < len)
 			ends[count++] = hi[k];
 	}
 	return count;
+}
+
+int pool_nose_pieces_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 points[2]) {
+	const int along_x = pool_rail_along_x(rail);
+	const double along = along_x ? pos.x : pos.y;
+	const double line = pool_rail_nose_line(table, rail);
+	double lo[2], hi[2];
+	const int pieces = nose_pieces(table, rail, lo, hi);
+	for (int k = 0; k < pieces; ++k) {
+		const double at = along < lo[k] ? lo[k] : along > hi[k] ? hi[k] : along;
+		points[k] = along_x ? pool_v3(at, line, table->cushion_height) : pool_v3(line, at, table->cushion_height);
+	}
+	return pieces;
 }
 
 int pool_nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 *point) {

@@ -42,6 +42,12 @@ pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_r
 /// nose left (its mouths cover it).
 int pool_nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 *point);
 
+/// The point of each piece of a rail's nose (the rail less its mouths: one piece on a short
+/// rail, two on a long rail with side pockets) nearest to a ball centred at pos, into
+/// points[0..2); returns how many pieces there are (0: the mouths cover the rail). A ball over a
+/// mouth narrower than 2R touches both its ends at once (pool_nose_nearest has only one).
+int pool_nose_pieces_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 points[2]);
+
 /// The nose's ends on a rail: the coordinates along the rail where a pocket mouth begins or ends
 /// (the mouths' edges, within the rail), into ends[0..4); returns how many.
 int pool_nose_ends(const pool_table_def *table, pool_rail rail, double ends[4]);

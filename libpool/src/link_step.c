@@ -126,6 +126,7 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				c->a = a;
 				c->b = -1;
 				c->rail = POOL_RAIL_NONE;
+				c->piece = 0;
 				c->n = pool_v3(0.0, 0.0, 1.0);
 				c->ra = pool_v3(0.0, 0.0, -R);
 				c->rb = pool_v3(0.0, 0.0, 0.0);
@@ -136,27 +137,34 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 		}
 		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
 			// The nose: its line, ending at the pocket mouths (over a mouth there is no nose but its
-			// end: the world pockets a ball crossing the contact line there).
-			pool_vec3 nose;
-			if (!pool_nose_nearest(table, (pool_rail)rail, pa, &nose))
-				continue;
-			const double gap = pool_v3_len(pool_v3_sub(pa, nose)) - R;
-			if (!(gap < sc->reach + POOL_LINK_MARGIN))
-				continue;
-			if (out) {
-				link_contact *c = &out[count];
-				c->kind = LINK_CUSHION;
-				c->a = a;
-				c->b = -1;
-				c->rail = rail;
-				c->n = pool_cushion_normal(table, pa, (pool_rail)rail);
-				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12); // a unit normal
-				c->ra = pool_v3_scale(c->n, -R);
-				c->rb = pool_v3(0.0, 0.0, 0.0);
-				c->gap = gap;
-				c->mu = p->mu_cushion;
+			// ends: the world pockets a ball crossing the contact line there). A contact per piece of
+			// the nose, at its point nearest the ball: a ball over a mouth narrower than 2R touches
+			// the ends on both sides, and each piece is convex, so the step's plane through that
+			// point (the contact's normal) keeps the ball out of all of it.
+			pool_vec3 nose[2];
+			const int pieces = pool_nose_pieces_nearest(table, (pool_rail)rail, pa, nose);
+			for (int k = 0; k < pieces; ++k) {
+				const pool_vec3 d = pool_v3_sub(pa, nose[k]);
+				const double dist = pool_v3_len(d);
+				const double gap = dist - R;
+				if (!(gap < sc->reach + POOL_LINK_MARGIN) || !(dist > 0.0))
+					continue;
+				if (out) {
+					link_contact *c = &out[count];
+					c->kind = LINK_CUSHION;
+					c->a = a;
+					c->b = -1;
+					c->rail = rail;
+					c->piece = k;
+					c->n = pool_v3_scale(d, 1.0 / dist);
+					POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12); // a unit normal
+					c->ra = pool_v3_scale(c->n, -R);
+					c->rb = pool_v3(0.0, 0.0, 0.0);
+					c->gap = gap;
+					c->mu = p->mu_cushion;
+				}
+				++count;
 			}
-			++count;
 		}
 		for (int b = a + 1; b < sc->n; ++b) {
 			const pool_vec3 d = pool_v3_sub(pa, centre(sc, b));
@@ -171,6 +179,7 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				c->a = a;
 				c->b = b;
 				c->rail = POOL_RAIL_NONE;
+				c->piece = 0;
 				c->n = pool_v3_scale(d, 1.0 / dist);
 				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12);
 				c->ra = pool_v3_scale(c->n, -R);
