@@ -1425,8 +1425,8 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 		st->worst_floor_ratio = steps.worst / HS_TOL_LINK_ABS;
 	if (!steps_ok)
 		hs_fail_mag(rep, HS_CK_FLOOR, steps.worst / HS_TOL_LINK_ABS,
-		            "event %d (t=%.17g): a LINK step's balls hold %.3g J more than entering it", steps.worst_event,
-		            steps.worst_time, steps.worst);
+		            "event %d (t=%.17g): the balls of the LINK step of event %d hold %.3g J more than entering it",
+		            steps.worst_event, steps.worst_time, steps.worst_step, steps.worst);
 	switch (rep->stop) {
 	case POOL_STOP_REST: {
 		st->stop_rest++;

@@ -11,7 +11,8 @@
 // the cut recorded: the step's changes taken for the time it lasted). So for every step S of a
 // cluster, with E(S) its balls' energy entering it (just before its link_step event):
 //   - at every later event that involves one of S's balls while they are still its (no event
-//     from outside has touched one of them since S), the energy of S's balls is at most
+//     from outside has touched one of them since S, and none of them has entered a later step:
+//     that step, held to the energy S left it, takes over), the energy of S's balls is at most
 //     E(S) + LE_TOLERANCE, taken just before that event, or for a LINK event (the cut, the next
 //     step, balls leaving) the lower of just before and just after it;
 //   - in particular just before an event from outside reaches a ball of S in mid-step (a step
@@ -157,6 +158,10 @@ static inline le_result le_check(const pool_sim *sim, const pool_params *p, cons
 					pool_ball_state now;
 					pool_motion_evolve(p, &seg[idx[k]], t - t0[idx[k]], &now);
 					s->energy += le_energy(p, &now);
+					// The ball's previous step is done (checked above at this event): its other
+					// balls may now share a cluster with balls an outside event has hit.
+					if (last_step[idx[k]] >= 0)
+						steps[last_step[idx[k]]].open = 0;
 					last_step[idx[k]] = n_steps;
 				}
 			++n_steps;
