@@ -81,7 +81,7 @@ class Allocator(_Struct):
 
 
 class Models(_Struct):
-    """pool_models: cushion, ball_ball_friction, squirt (C enum values; 0 is the default law)."""
+    """pool_models: cushion, ball_ball_friction, squirt (C enum values; all 0 is the "thesis" set)."""
     _fields_ = [("cushion", c_int), ("ball_ball_friction", c_int), ("squirt", c_int)]
 
 
@@ -135,6 +135,10 @@ _PROTOTYPES = {
     "pool_cushion_model_from_name": (c_int, [c_char_p]),
     "pool_ball_friction_model_from_name": (c_int, [c_char_p]),
     "pool_squirt_model_from_name": (c_int, [c_char_p]),
+    "pool_default_models": (Models, []),
+    "pool_thesis_models": (Models, []),
+    "pool_models_preset": (c_int, [c_char_p, POINTER(Models)]),
+    "pool_models_preset_name": (c_char_p, [c_int]),
     "pool_sim_create": (c_int, [POINTER(SimDef), POINTER(_sim_p), _E]),
     "pool_sim_destroy": (None, [_sim_p]),
     "pool_sim_reset": (c_int, [_sim_p, POINTER(SimDef), _E]),

@@ -769,6 +769,11 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	hs_rng r = {seed * 0xD1B54A32D192ED03ull ^ ((uint64_t)index * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)cls << 56)};
 	hs_next(&r);
 	s->def = pool_default_sim_def();
+	// A quarter of the shots under the "thesis" laws (the 2012 work's), the rest the defaults: the
+	// top two bits of a Weyl sequence in the index, so neither the class (index modulo the
+	// classes) nor the generator's stream depends on it.
+	if (((uint64_t)index * 0x9E3779B97F4A7C15ull) >> 62 == 3)
+		s->def.models = pool_thesis_models();
 	s->def.max_events = HS_MAX_EVENTS;
 	s->def.max_time = HS_MAX_TIME;
 	switch (cls) {
@@ -814,6 +819,9 @@ static inline void hs_print_scenario(FILE *f, const hs_shot *s) {
 	}
 	fprintf(f, "],\n \"strike\": {\"ball\": %d, \"speed\": %.17g, \"phi\": %.17g, \"theta\": %.17g, \"a\": %.17g, \"b\": %.17g},\n",
 	        (int)s->balls[s->cue].id, s->speed, s->phi_deg, s->theta_deg, s->a, s->b);
+	fprintf(f, " \"models\": {\"cushion\": \"%s\", \"ball_ball_friction\": \"%s\", \"squirt\": \"%s\"},\n",
+	        pool_cushion_model_name(s->def.models.cushion), pool_ball_friction_model_name(s->def.models.ball_ball_friction),
+	        pool_squirt_model_name(s->def.models.squirt));
 	fprintf(f, " \"options\": {\"max_time\": %.17g, \"max_events\": %d}}\n", s->def.max_time, s->def.max_events);
 }
 

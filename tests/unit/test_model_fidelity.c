@@ -313,7 +313,7 @@ static void test_throw_tp_a14(void **state) {
 // The friction is the fit at the contact's slip speed, whatever the balls' spins.
 static void test_ball_friction_law(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = thesis_sim_def(); // the constant law first
 	pool_ball_state a, b;
 	memset(&a, 0, sizeof a);
 	memset(&b, 0, sizeof b);
@@ -404,10 +404,27 @@ static void test_names_and_validation(void **state) {
 	assert_int_equal(pool_squirt_model_from_name("endmass"), POOL_SQUIRT_ENDMASS);
 	assert_int_equal(pool_cushion_model_from_name("foo"), -1);
 	assert_int_equal(pool_squirt_model_from_name(NULL), -1);
+	// The defaults are the measured laws (issue 25); "thesis" is the 2012 work's, all zero.
 	pool_sim_def def = pool_default_sim_def();
-	assert_int_equal(def.models.cushion, 0);
-	assert_int_equal(def.models.ball_ball_friction, 0);
-	assert_int_equal(def.models.squirt, 0);
+	assert_int_equal(def.models.cushion, POOL_CUSHION_MATHAVAN2010);
+	assert_int_equal(def.models.ball_ball_friction, POOL_BALL_FRICTION_ALCIATORE);
+	assert_int_equal(def.models.squirt, POOL_SQUIRT_NONE);
+	const pool_models zero = {0}, thesis = pool_thesis_models(), measured = pool_default_models();
+	assert_memory_equal(&thesis, &zero, sizeof zero);
+	assert_memory_equal(&measured, &def.models, sizeof zero);
+	pool_models m = zero;
+	assert_int_equal(pool_models_preset("default", &m), POOL_OK);
+	assert_memory_equal(&m, &measured, sizeof m);
+	assert_int_equal(pool_models_preset("thesis", &m), POOL_OK);
+	assert_memory_equal(&m, &zero, sizeof m);
+	assert_int_equal(pool_models_preset("Thesis", &m), POOL_ERR_UNKNOWN_PRESET);
+	assert_int_equal(pool_models_preset(NULL, &m), POOL_ERR_INVALID_ARGUMENT);
+	assert_int_equal(pool_models_preset("thesis", NULL), POOL_ERR_INVALID_ARGUMENT);
+	assert_memory_equal(&m, &zero, sizeof m);
+	assert_string_equal(pool_models_preset_name(0), "default");
+	assert_string_equal(pool_models_preset_name(1), "thesis");
+	assert_null(pool_models_preset_name(2));
+	assert_null(pool_models_preset_name(-1));
 	pool_sim *sim = NULL;
 	pool_error err;
 	def.models.cushion = (pool_cushion_model)2;

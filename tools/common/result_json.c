@@ -254,8 +254,8 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 		pool_jw_end(&w, '}');
 		pool_jw_key(&w, "ball_radius");
 		pool_jw_number(&w, options->def->params.ball_radius);
-		if (!pool_models_are_default(&options->def->models))
-			pool_jw_models(&w, &options->def->models);
+		// Always: a result says which laws made it, whatever a reader's defaults are.
+		pool_jw_models(&w, &options->def->models);
 	}
 	write_events(&w, sim, events, count);
 	pool_jw_key(&w, "final");
