@@ -1,6 +1,7 @@
-// The "mathavan2010" cushion model (docs/physics.md "Optional models"): Mathavan, Jackson & Parkin,
+// The "mathavan2010" cushion model (docs/physics.md "Models"): Mathavan, Jackson & Parkin,
 // "A theoretical analysis of billiard ball dynamics under cushion impacts", Proc. IMechE Part C
-// 224 (2010). The cushion contact I (at the nose, e_cushion, mu_cushion) and the cloth contact C
+// 224 (2010). The cushion contact I (at the nose, e_cushion_mathavan, mu_cushion_mathavan: the
+// paper's fit, not Petit's e_cushion and mu_cushion) and the cloth contact C
 // (under the ball, mu_table) act together through the impact; the ball's velocities are
 // integrated over the normal impulse P at I through compression and restitution, restitution by
 // Stronge's energetic coefficient (the normal force at I gives back e^2 of the work it absorbed

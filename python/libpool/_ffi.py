@@ -55,7 +55,8 @@ class Params(_Struct):
     _fields_ = [(n, c_double) for n in (
         "g", "mu_slide", "mu_roll", "mu_spin", "mu_ball", "e_ball", "mu_cushion", "e_cushion",
         "mu_table", "e_table", "ball_radius", "ball_mass", "cue_mass",
-        "throw_a", "throw_b", "throw_c", "cue_end_mass")]
+        "throw_a", "throw_b", "throw_c", "cue_end_mass", "e_cushion_mathavan",
+        "mu_cushion_mathavan")]
 
 
 class BallState(_Struct):

@@ -1,4 +1,4 @@
-// The optional models (issue 12, docs/physics.md "Optional models") in the comparison harness:
+// The optional models (issue 12, docs/physics.md "Models") in the comparison harness:
 // scenarios with "models" load (bad ones refused naming the field); the libpool plugin simulates
 // the scenario's models (its run equals the libpool reference of the same scenario, and differs
 // from the default models' one); the ODE and Bullet plugins say which models they cannot

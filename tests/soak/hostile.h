@@ -697,6 +697,9 @@ static inline void hs_extreme_params(hs_shot *s, hs_rng *r) {
 	for (int k = 0; k < 2; ++k)
 		if (hs_chance(r, 0.5))
 			*es[k] = hs_chance(r, 0.4) ? 0.0 : hs_chance(r, 0.6) ? 1.0 : hs_u(r);
+	// The same extremes for mathavan2010's own nose parameters (no draw: the stream is unchanged).
+	p->e_cushion_mathavan = p->e_cushion;
+	p->mu_cushion_mathavan = p->mu_cushion;
 	if (hs_chance(r, 0.1))
 		p->g = hs_chance(r, 0.5) ? 1.62 : 24.8;
 	if (hs_chance(r, 0.4))
@@ -804,9 +807,10 @@ static inline void hs_print_scenario(FILE *f, const hs_shot *s) {
 	        t->length, t->width, t->cushion_height, t->corner_mouth, t->side_mouth);
 	fprintf(f, " \"params\": {\"g\": %.17g, \"mu_slide\": %.17g, \"mu_roll\": %.17g, \"mu_spin\": %.17g, \"mu_ball\": %.17g, "
 	           "\"e_ball\": %.17g, \"mu_cushion\": %.17g, \"e_cushion\": %.17g, \"mu_table\": %.17g, \"e_table\": %.17g, "
-	           "\"ball_radius\": %.17g, \"ball_mass\": %.17g, \"cue_mass\": %.17g},\n",
+	           "\"ball_radius\": %.17g, \"ball_mass\": %.17g, \"cue_mass\": %.17g, \"e_cushion_mathavan\": %.17g, "
+	           "\"mu_cushion_mathavan\": %.17g},\n",
 	        p->g, p->mu_slide, p->mu_roll, p->mu_spin, p->mu_ball, p->e_ball, p->mu_cushion, p->e_cushion, p->mu_table,
-	        p->e_table, p->ball_radius, p->ball_mass, p->cue_mass);
+	        p->e_table, p->ball_radius, p->ball_mass, p->cue_mass, p->e_cushion_mathavan, p->mu_cushion_mathavan);
 	fprintf(f, " \"balls\": [");
 	for (int i = 0; i < s->n; ++i) {
 		const pool_ball_state *b = &s->balls[i];

@@ -1,4 +1,4 @@
-// The optional models of a scenario (docs/interfaces.md "Scenario file", docs/physics.md "Optional models")
+// The optional models of a scenario (docs/interfaces.md "Scenario file", docs/physics.md "Models")
 // in the tools: "models" and the four model parameters read into the pool_sim_def, refusals that
 // name the field, pool-rack's --model kinds (models_json.h), and the models written back into a
 // result so they round-trip through the parser.
@@ -97,9 +97,10 @@ static void test_model_parameters_are_read(void **state) {
 	pool_scenario s;
 	char err[256];
 	const char *doc = DOC("\"params\": {\"throw_a\": 0.02, \"throw_b\": 0.2, \"throw_c\": 2.5,"
-	                      " \"cue_end_mass\": 0.09},");
+	                      " \"cue_end_mass\": 0.09, \"e_cushion_mathavan\": 0.9, \"mu_cushion_mathavan\": 0.3},");
 	if (parse(doc, &s, err, sizeof err) != 0)
 		fail_msg("%s", err);
+	assert_true(s.def.params.e_cushion_mathavan == 0.9 && s.def.params.mu_cushion_mathavan == 0.3);
 	assert_true(s.def.params.throw_a == 0.02);
 	assert_true(s.def.params.throw_b == 0.2);
 	assert_true(s.def.params.throw_c == 2.5);
@@ -164,6 +165,8 @@ static void test_parameter_ranges_are_the_librarys(void **state) {
 		{DOC("\"params\": {\"throw_c\": -1},"), "params.throw_c"},
 		{DOC("\"params\": {\"cue_end_mass\": 0},"), "params.cue_end_mass"},
 		{DOC("\"params\": {\"cue_end_mass\": -0.1},"), "params.cue_end_mass"},
+		{DOC("\"params\": {\"e_cushion_mathavan\": 1.1},"), "params.e_cushion_mathavan"},
+		{DOC("\"params\": {\"mu_cushion_mathavan\": -0.1},"), "params.mu_cushion_mathavan"},
 	};
 	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
 		pool_scenario s;

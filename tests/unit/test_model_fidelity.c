@@ -1,4 +1,4 @@
-// The optional models of issue 12 (docs/physics.md "Optional models") against published figures and
+// The optional models of issue 12 (docs/physics.md "Models") against published figures and
 // independent calculations: Mathavan 2010's cushion, Alciatore's speed-dependent ball-ball
 // friction (throw, TP A.14) and the cue's end-mass squirt (TP A.31); invariants of every model
 // (energy never increases, momentum in ball-ball events, random shots with every model on).
@@ -57,8 +57,8 @@ static pool_params mathavan_params(void) {
 	pool_params p = pool_default_params();
 	p.ball_mass = 0.1406;
 	p.ball_radius = 0.02625;
-	p.e_cushion = 0.98;
-	p.mu_cushion = 0.14;
+	p.e_cushion_mathavan = 0.98;
+	p.mu_cushion_mathavan = 0.14;
 	p.mu_table = 0.212;
 	return p;
 }
@@ -111,6 +111,18 @@ static void test_mathavan_perpendicular(void **state) {
 	}
 }
 
+// The default parameters carry the paper's fit (issue 25): with only the paper's ball, cloth and
+// nose height set, the default e_cushion_mathavan and mu_cushion_mathavan give its 0.91.
+static void test_mathavan_defaults_are_the_fit(void **state) {
+	(void)state;
+	pool_params p = pool_default_params();
+	p.ball_mass = 0.1406;
+	p.ball_radius = 0.02625;
+	p.mu_table = 0.212;
+	const rebound rolling = cushion_impact(&p, 1.0, 0.0, 1.0, 0.0, POOL_MATHAVAN_STEPS);
+	assert_true(fabs(rolling.ratio - 0.91) <= MATHAVAN_RATIO_TOLERANCE);
+}
+
 // Issue 12, quoting Mathavan 2010's model: a rolling ball at 1 m/s, 45 degrees in, leaves at
 // 52.7 degrees from the rail (Petit's law: 41.9). Running side leaves flatter (closer to the
 // rail), check side steeper (the paper's oblique-impact figures).
@@ -135,10 +147,10 @@ static void test_mathavan_oblique(void **state) {
 static void test_mathavan_frictionless(void **state) {
 	(void)state;
 	pool_params p = mathavan_params();
-	p.mu_cushion = 0.0;
+	p.mu_cushion_mathavan = 0.0;
 	p.mu_table = 0.0;
 	for (double e = 0.0; e <= 1.0; e += 0.25) {
-		p.e_cushion = e;
+		p.e_cushion_mathavan = e;
 		const rebound r = cushion_impact(&p, 1.3, 30.0, 0.6, 0.7, POOL_MATHAVAN_STEPS);
 		assert_true(fabs(r.after.vel.y + e * 1.3 * cos(30.0 * DEG)) <= 1e-12);
 		assert_true(fabs(r.after.vel.x - 1.3 * sin(30.0 * DEG)) <= 1e-12);
@@ -197,8 +209,8 @@ static double sim_rail_rebound(pool_cushion_model model, bool airborne, pool_mot
 	pool_sim_def def = pool_default_sim_def();
 	def.models.cushion = model;
 	def.airborne = airborne;
-	def.params.e_cushion = 0.98; // Mathavan 2010's cushion and cloth
-	def.params.mu_cushion = 0.14;
+	def.params.e_cushion = def.params.e_cushion_mathavan = 0.98; // Mathavan 2010's cushion and cloth, both laws
+	def.params.mu_cushion = def.params.mu_cushion_mathavan = 0.14;
 	def.params.mu_table = 0.212;
 	pool_sim *sim;
 	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
@@ -603,6 +615,7 @@ int main(void) {
 		cmocka_unit_test(test_mathavan_frictionless),
 		cmocka_unit_test(test_mathavan_convergence_and_energy),
 		cmocka_unit_test(test_mathavan_edges),
+		cmocka_unit_test(test_mathavan_defaults_are_the_fit),
 		cmocka_unit_test(test_mathavan_in_sim),
 		cmocka_unit_test(test_throw_tp_a14),
 		cmocka_unit_test(test_ball_friction_law),

@@ -197,6 +197,8 @@ static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
 		{"throw_b", &p->throw_b},
 		{"throw_c", &p->throw_c},
 		{"cue_end_mass", &p->cue_end_mass},
+		{"e_cushion_mathavan", &p->e_cushion_mathavan},
+		{"mu_cushion_mathavan", &p->mu_cushion_mathavan},
 	};
 	size_t n = sizeof names / sizeof names[0];
 	const char *key;
