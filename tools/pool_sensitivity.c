@@ -73,7 +73,7 @@ static const char usage_text[] =
 	"                       the seed and i only, and its strike is pool-batch --noise's strike i\n"
 	"  --balls IDS          balls whose final positions are studied (default: the struck ball)\n"
 	"  --models A[,B]       model set(s): default (the scenario as written), thesis (the 2012\n"
-	"                       work's laws), spin-blind (ball-ball and cushion friction off, like\n"
+	"                       work's laws), spin-blind (ball-ball and cushion frictions off, like\n"
 	"                       FastFiz), model names (mathavan2010, alciatore, endmass, petit, ...),\n"
 	"                       joined with '+' (thesis+spin-blind); two sets run the same samples\n"
 	"                       and report the distance between means\n"

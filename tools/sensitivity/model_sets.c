@@ -14,9 +14,14 @@ const char *sens_model_set_names(void) {
 static bool apply_component(const char *name, pool_sim_def *def) {
 	if (strcmp(name, "spin-blind") == 0) {
 		// FastFiz's limitation measured in the 2012 work: collisions that ignore spin, i.e. no
-		// tangential friction at ball-ball and ball-cushion contacts.
+		// tangential friction at ball-ball and ball-cushion contacts, whatever the laws: the
+		// constant mu_ball and Alciatore's fit (throw_a + throw_b e^(-c v) = 0), Petit's
+		// mu_cushion and Mathavan's nose friction.
 		def->params.mu_ball = 0.0;
+		def->params.throw_a = 0.0;
+		def->params.throw_b = 0.0;
 		def->params.mu_cushion = 0.0;
+		def->params.mu_cushion_mathavan = 0.0;
 		return true;
 	}
 	// "default" stands alone (the scenario as written), so here it is not the library's set.
