@@ -32,8 +32,9 @@ typedef struct pool_scenario {
 /// Planar scenarios (options.airborne false) are checked with the library's own rules (a ball
 /// must sit on the cloth, z = R, with no vertical velocity). Airborne scenarios accept 3D
 /// positions with z >= R (within POOL_TOUCH_TOLERANCE; "balls[i].pos: below the cloth") and
-/// vertical velocities, refuse 3D interpenetration, and do not need the library to simulate
-/// airborne motion: until it does, pool_scenario_setup returns its "options.airborne" error.
+/// vertical velocities and refuse 3D interpenetration. A "table" may be a preset name. The
+/// library's messages about its def (def.airborne, def.max_time...) are reported with the
+/// file's names (options.airborne...).
 int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
                         size_t err_size);
 
@@ -67,9 +68,6 @@ typedef struct pool_result_options {
 /// The libpool-result/1 document of a finished (or stopped) simulation, malloc'd, NUL-terminated;
 /// NULL on allocation failure. Byte-identical for identical simulations.
 char *pool_result_json(const pool_sim *sim, const pool_result_options *options);
-
-/// Name of a stop reason as written in "stats.stop_reason" ("rest", "max_time", ...).
-const char *pool_stop_reason_name(pool_stop_reason reason);
 
 #ifdef __cplusplus
 }
