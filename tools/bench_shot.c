@@ -116,9 +116,10 @@ static double urand(void) {
 
 int main(int argc, char **argv) {
 	int runs = 2000;
+	const char *models = "default";
 	for (int i = 1; i < argc; ++i) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-			printf("usage: pool-bench-shot [--runs N]\n"
+			printf("usage: pool-bench-shot [--runs N] [--models default|thesis]\n"
 			       "Times whole shots with libpool, reusing one pool_sim (pool_sim_reset):\n"
 			       "  break-frozen      15-ball rack, gap 0, centre-ball break at 8 m/s\n"
 			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
@@ -130,7 +131,9 @@ int main(int argc, char **argv) {
 			       "  break (airborne)  the 0.1 mm break with the cue elevated 5 deg, airborne motion\n"
 			       "Prints median, minimum and mean time per shot over N runs (default 2000), events\n"
 			       "and LINK steps per shot, events per second, the library's peak heap bytes and allocation count before and after the\n"
-			       "runs (they must not grow), the process's peak resident memory, and the machine.\n");
+			       "runs (they must not grow), the process's peak resident memory, and the machine.\n"
+			       "--models: the model set of every shot (default: the library's defaults, the\n"
+			       "measured laws; thesis: the 2012 work's).\n");
 			return 0;
 		}
 		if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
@@ -139,13 +142,22 @@ int main(int argc, char **argv) {
 				fprintf(stderr, "pool-bench-shot: --runs: must be > 0\n");
 				return 2;
 			}
+		} else if (strcmp(argv[i], "--models") == 0 && i + 1 < argc) {
+			models = argv[++i];
+			pool_models m;
+			if (pool_models_preset(models, &m) != POOL_OK) {
+				fprintf(stderr, "pool-bench-shot: --models: unknown model set '%s' (default, thesis)\n", models);
+				return 2;
+			}
 		} else {
 			fprintf(stderr, "pool-bench-shot: unknown argument '%s' (see --help)\n", argv[i]);
 			return 2;
 		}
 	}
 	print_machine();
+	printf("models: %s\n", models);
 	pool_sim_def def = pool_default_sim_def();
+	pool_models_preset(models, &def.models);
 	def.allocator = (pool_allocator){counting_alloc, counting_free, NULL};
 	pool_sim *sim;
 	pool_error err;

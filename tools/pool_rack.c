@@ -29,13 +29,15 @@ typedef struct rack_options {
 	const char *table;  ///< preset name
 	const char *output; ///< NULL = standard output
 	bool airborne;
-	pool_models models; ///< --model choices (zero: the default models)
+	pool_models models; ///< --models and --model choices, on the default models
+	bool has_models;    ///< written into the scenario only when chosen
 	bool help;
 } rack_options;
 
 static const char usage_text[] =
 	"usage: pool-rack 8ball|9ball [--speed V] [--gap G] [--spin A,B] [--phi DEG] [--theta DEG]\n"
-	"                 [--table PRESET] [--airborne] [--model KIND=NAME ...] [-o FILE]\n"
+	"                 [--table PRESET] [--airborne] [--models SET] [--model KIND=NAME ...]\n"
+	"                 [-o FILE]\n"
 	"\n"
 	"Writes a libpool-scenario/1 file: the cue ball (id 0) on the head spot, a standard rack\n"
 	"(8ball: ids 1..15, 9ball: ids 1..9) with its apex on the foot spot, and a break strike.\n"
@@ -47,8 +49,11 @@ static const char usage_text[] =
 	"  --theta DEG     cue elevation in degrees (default 0)\n"
 	"  --table PRESET  wpa-9ft (default), wpa-8ft or wpa-7ft\n"
 	"  --airborne      enable airborne motion in the scenario's options\n"
-	"  --model KIND=NAME  a model of the scenario's \"models\" (repeatable): cushion=petit|\n"
-	"                  mathavan2010, ball_ball_friction=constant|alciatore, squirt=none|endmass\n"
+	"  --models SET    the scenario's \"models\": a model set, default (the measured laws) or\n"
+	"                  thesis (the 2012 work's), or model names joined with '+' (thesis+endmass)\n"
+	"  --model KIND=NAME  one kind of the scenario's \"models\" (repeatable, after --models):\n"
+	"                  cushion=petit|mathavan2010, ball_ball_friction=constant|alciatore,\n"
+	"                  squirt=none|endmass\n"
 	"  -o FILE         write to FILE (atomically) instead of standard output\n"
 	"  -h, --help      show this help\n";
 
@@ -79,6 +84,7 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 	o->speed = DEFAULT_SPEED;
 	o->gap = DEFAULT_GAP;
 	o->table = "wpa-9ft";
+	o->models = pool_default_models();
 	bool have_kind = false;
 	for (int i = 1; i < argc; ++i) {
 		const char *a = argv[i];
@@ -96,7 +102,7 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 		} else if (a[0] == '-' && a[1] != '\0' && !value) {
 			if (strcmp(a, "--speed") && strcmp(a, "--gap") && strcmp(a, "--spin") &&
 			    strcmp(a, "--phi") && strcmp(a, "--theta") && strcmp(a, "--table") && strcmp(a, "-o") &&
-			    strcmp(a, "--model"))
+			    strcmp(a, "--model") && strcmp(a, "--models"))
 				return pool_cli_usage_error(PROGRAM, "unknown option '%s'", pool_cli_arg(a));
 			return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
 		} else if (strcmp(a, "--speed") == 0) {
@@ -143,6 +149,13 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 			int status = parse_model(value, &o->models);
 			if (status)
 				return status;
+			o->has_models = true;
+			++i;
+		} else if (strcmp(a, "--models") == 0) {
+			char err[512];
+			if (pool_models_parse_spec(&o->models, value, err, sizeof err))
+				return pool_cli_usage_error(PROGRAM, "--models: %s", err);
+			o->has_models = true;
 			++i;
 		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
 			o->output = value;
@@ -204,7 +217,7 @@ static char *scenario_json(const rack_options *o, const pool_ball_state *balls, 
 	pool_jw_key(&w, "b");
 	pool_jw_number(&w, o->b);
 	pool_jw_end(&w, '}');
-	if (!pool_models_are_default(&o->models))
+	if (o->has_models)
 		pool_jw_models(&w, &o->models);
 	if (o->airborne) {
 		pool_jw_key(&w, "options");

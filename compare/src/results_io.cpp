@@ -662,7 +662,7 @@ bool write_report(const std::string &dir, const std::vector<Record> &records, co
 	}
 	if (!unexpressed.empty()) {
 		out << "## Models an engine cannot express\n\nThese scenarios select models (docs/physics.md "
-		       "\"Optional models\") that the engine does not have; it ran them with its own laws, so its "
+		       "\"Models\") that the engine does not have; it ran them with its own laws, so its "
 		       "errors there include the difference of the laws, not only its integration "
 		       "(`unsupported_models` in results.json):\n\n";
 		for (const std::string &line : unexpressed)

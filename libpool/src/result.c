@@ -17,7 +17,7 @@ const char *pool_result_str(pool_result result) {
 	case POOL_ERR_DUPLICATE_ID: return "duplicate ball id";
 	case POOL_ERR_UNKNOWN_BALL: return "unknown ball id";
 	case POOL_ERR_BAD_STRIKE: return "impossible cue strike";
-	case POOL_ERR_UNKNOWN_PRESET: return "unknown table preset";
+	case POOL_ERR_UNKNOWN_PRESET: return "unknown preset (table or model set)";
 	case POOL_ERR_STATE: return "not allowed in the current state";
 	case POOL_ERR_INTERNAL: return "internal error";
 	}

@@ -52,6 +52,12 @@ pool_params pool_default_params(void) {
 	// (TP A.31's formula), within the 2-3 degrees Alciatore's cue test machine reports for
 	// standard shafts at that offset.
 	p.cue_end_mass = 0.008;
+	// Mathavan, Jackson & Parkin 2010 fitted their model to their measured rebounds with these two
+	// (a rolling ball keeps 0.91 of its speed at right angles on their snooker cushion); the law
+	// reads them rather than e_cushion and mu_cushion, the effective values of Petit's law,
+	// which leaves the cloth's part of the impact out (docs/physics.md "Models").
+	p.e_cushion_mathavan = 0.98;
+	p.mu_cushion_mathavan = 0.14;
 	return p;
 }
 
@@ -124,7 +130,9 @@ pool_result pool_params_validate(const pool_params *p, pool_error *error) {
 	    (r = non_negative(p->throw_a, "params.throw_a", error)) ||
 	    (r = non_negative(p->throw_b, "params.throw_b", error)) ||
 	    (r = non_negative(p->throw_c, "params.throw_c", error)) ||
-	    (r = positive(p->cue_end_mass, "params.cue_end_mass", error)))
+	    (r = positive(p->cue_end_mass, "params.cue_end_mass", error)) ||
+	    (r = unit_interval(p->e_cushion_mathavan, "params.e_cushion_mathavan", error)) ||
+	    (r = non_negative(p->mu_cushion_mathavan, "params.mu_cushion_mathavan", error)))
 		return r;
 	// The strike and collision laws divide by m R^2 and 2 m R: when those underflow (a subnormal
 	// mass such as 4.9e-324 kg) or overflow, spins come out NaN (found by test_scenario_fuzz).

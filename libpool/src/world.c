@@ -51,6 +51,7 @@ pool_sim_def pool_default_sim_def(void) {
 	def.airborne = false;
 	def.max_time = 120.0;
 	def.max_events = 100000;
+	def.models = pool_default_models();
 	return def;
 }
 

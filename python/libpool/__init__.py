@@ -33,7 +33,8 @@ __all__ = [
     "Allocator", "table_preset", "default_table", "default_params", "default_sim_def",
     "validate_table", "validate_params", "strike_velocities", "rack", "break_strike",
     "quartic_real_roots", "quartic_smallest_root_in", "library_path", "RESULT_NAMES",
-    "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict",
+    "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict", "model_sets",
+    "default_models", "thesis_models",
     "version", "ball_on_cloth", "MOTION_NAMES", "EVENT_TYPES", "STOP_REASONS", "write_result",
 ]
 
@@ -241,7 +242,8 @@ def default_params():
 
 
 def default_sim_def():
-    """pool_default_sim_def(): WPA 9 ft, default params, planar, max_time 120 s, 100000 events."""
+    """pool_default_sim_def(): WPA 9 ft, default params, planar, max_time 120 s, 100000 events,
+    the default models (default_models())."""
     return _lib().pool_default_sim_def()
 
 
@@ -320,7 +322,7 @@ def _rack_c(kind, gap, table, params):
     return out[:n]
 
 
-# ---- models (docs/physics.md "Optional models") ------------------------------------------------------
+# ---- models (docs/physics.md "Models") ------------------------------------------------------
 
 # The keys of a scenario's "models" object, with the C functions naming their models.
 MODEL_KINDS = ("cushion", "ball_ball_friction", "squirt")
@@ -333,7 +335,7 @@ _MAX_MODELS_PER_KIND = 16  # model enumerations are small; bounds the search for
 
 
 def model_names(kind):
-    """The names of one kind's models, the default first, as the library knows them:
+    """The names of one kind's models, the thesis law first, as the library knows them:
     model_names("cushion") == ["petit", "mathavan2010"]. An unknown kind raises PoolError."""
     if kind not in _MODEL_FUNCTIONS:
         raise PoolError(_ERR_INVALID_ARGUMENT,
@@ -360,23 +362,64 @@ def _model_value(kind, name):
     return value if value >= 0 else None
 
 
+def model_sets():
+    """The names of the model sets, as the library knows them: ["default", "thesis"]."""
+    names, i = [], 0
+    while (name := _lib().pool_models_preset_name(i)) is not None:
+        names.append(name.decode())
+        i += 1
+    return names
+
+
+def default_models():
+    """The default laws (a Models): "mathavan2010" cushions, "alciatore" ball-ball friction, no
+    squirt: the measured ones (docs/physics.md "Models")."""
+    return _lib().pool_default_models()
+
+
+def thesis_models():
+    """The "thesis" model set (a Models, all zero): the 2012 work's laws, "petit", "constant",
+    "none", which were the defaults before issue 25."""
+    return _lib().pool_thesis_models()
+
+
+def _model_set(name, path):
+    """The Models of a set by name, or PoolError naming `path`."""
+    out = Models()
+    if isinstance(name, str) and "\0" not in name:
+        try:
+            if _lib().pool_models_preset(name.encode("utf-8"), byref(out)) == 0:
+                return out
+        except UnicodeEncodeError:
+            pass
+    elif not isinstance(name, str):
+        raise PoolError(_ERR_INVALID_ARGUMENT, f"{path}: must be a string")
+    raise PoolError(_ERR_INVALID_ARGUMENT,
+                    f'{path}: unknown model set "{name}" ({", ".join(model_sets())})')
+
+
 def make_models(models=None, **names):
-    """A C Models (pool_models) from names, as a scenario's "models" object gives them:
-    make_models({"cushion": "mathavan2010"}) or make_models(cushion="mathavan2010",
-    squirt="endmass"); kinds not given keep the defaults ("petit", "constant", "none"). A Models
-    is copied. Unknown kinds or names raise PoolError (POOL_ERR_INVALID_ARGUMENT) naming the field,
-    e.g. 'models.cushion: unknown model "foo" (petit, mathavan2010)'."""
+    """A C Models (pool_models) as a scenario's "models" gives it: None (the defaults), a model
+    set's name ("thesis", "default"), a dict of names, make_models({"cushion": "petit"}) or
+    make_models(cushion="petit", squirt="endmass"), whose "set" (default "default") is
+    overridden kind by kind: make_models({"set": "thesis", "squirt": "endmass"}); or a Models
+    (copied; names then override it). Unknown sets, kinds or names raise PoolError
+    (POOL_ERR_INVALID_ARGUMENT) naming the field, e.g. 'models.cushion: unknown model "foo"
+    (petit, mathavan2010)'."""
     if isinstance(models, Models):
         out = Models.from_buffer_copy(models)
         if not names:
             return out
         models = {}
     elif models is None:
-        out, models = Models(), {}
+        out, models = default_models(), {}
+    elif isinstance(models, str):
+        out, models = _model_set(models, "models"), {}
     elif isinstance(models, dict):
-        out = Models()
+        out = _model_set(models["set"], "models.set") if "set" in models else default_models()
+        models = {k: v for k, v in models.items() if k != "set"}
     else:
-        raise TypeError(f"models: expected a dict of names or a Models, got "
+        raise TypeError(f"models: expected a model set name, a dict of names or a Models, got "
                         f"{type(models).__name__}")
     for kind, name in list(models.items()) + list(names.items()):
         if kind not in _MODEL_FUNCTIONS:
@@ -455,11 +498,13 @@ class Sim:
 
     table: a preset name ("wpa-9ft"...) or a TableDef; params: a Params (default_params());
     max_time in s, max_events; airborne: True for motion off the cloth (jumps, hops, balls
-    leaving the table; False, the default, is planar); models: the
-    optional models (docs/physics.md "Optional models") as a dict of names, e.g. {"cushion":
-    "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "endmass"} (kinds not given keep
-    the defaults), or a Models (make_models). Their parameters (throw_a, throw_b, throw_c,
-    cue_end_mass) are in params.
+    leaving the table; False, the default, is planar); models: the laws (docs/physics.md
+    "Models"), as make_models takes them: a set's name ("thesis": the 2012 work's laws), a
+    dict of names, e.g. {"squirt": "endmass"} or {"set": "thesis", "squirt": "endmass"}
+    (kinds not given come from the set, default "default"), or a Models. Without it the
+    defaults: "mathavan2010" cushions, "alciatore" ball-ball friction. Their parameters
+    (throw_a, throw_b, throw_c, cue_end_mass, e_cushion_mathavan, mu_cushion_mathavan) are
+    in params.
 
     Threads: each method holds the Sim's lock (Sim.lock, reentrant) while it uses the C
     simulation, so calls from several threads run one after the other (a long run() makes the
@@ -565,8 +610,8 @@ class Sim:
 
     @property
     def models(self):
-        """The models in use, by name: {"cushion": "petit", "ball_ball_friction": "constant",
-        "squirt": "none"} unless chosen otherwise."""
+        """The models in use, by name: {"cushion": "mathavan2010", "ball_ball_friction":
+        "alciatore", "squirt": "none"} unless chosen otherwise."""
         return models_dict(self.definition.models)
 
     def reset(self, table=None, params=None, max_time=None, max_events=None, airborne=None,

@@ -55,7 +55,8 @@ class Params(_Struct):
     _fields_ = [(n, c_double) for n in (
         "g", "mu_slide", "mu_roll", "mu_spin", "mu_ball", "e_ball", "mu_cushion", "e_cushion",
         "mu_table", "e_table", "ball_radius", "ball_mass", "cue_mass",
-        "throw_a", "throw_b", "throw_c", "cue_end_mass")]
+        "throw_a", "throw_b", "throw_c", "cue_end_mass", "e_cushion_mathavan",
+        "mu_cushion_mathavan")]
 
 
 class BallState(_Struct):
@@ -81,7 +82,7 @@ class Allocator(_Struct):
 
 
 class Models(_Struct):
-    """pool_models: cushion, ball_ball_friction, squirt (C enum values; 0 is the default law)."""
+    """pool_models: cushion, ball_ball_friction, squirt (C enum values; all 0 is the "thesis" set)."""
     _fields_ = [("cushion", c_int), ("ball_ball_friction", c_int), ("squirt", c_int)]
 
 
@@ -136,6 +137,10 @@ _PROTOTYPES = {
     "pool_cushion_model_from_name": (c_int, [c_char_p]),
     "pool_ball_friction_model_from_name": (c_int, [c_char_p]),
     "pool_squirt_model_from_name": (c_int, [c_char_p]),
+    "pool_default_models": (Models, []),
+    "pool_thesis_models": (Models, []),
+    "pool_models_preset": (c_int, [c_char_p, POINTER(Models)]),
+    "pool_models_preset_name": (c_char_p, [c_int]),
     "pool_stop_reason_name": (c_char_p, [c_int]),
     "pool_ball_on_cloth": (BallState, [c_int32, c_double, c_double, POINTER(Params)]),
     "pool_sim_create": (c_int, [POINTER(SimDef), POINTER(_sim_p), _E]),

@@ -21,7 +21,7 @@ from ctypes import PyDLL, byref, c_double, c_int, c_int32, c_void_p, string_at
 
 import numpy as np
 
-from . import MODEL_KINDS, PoolError, _ffi, _model_value, model_names
+from . import MODEL_KINDS, PoolError, _ffi, _model_set, _model_value, model_names
 from ._ffi import BallState as CBallState, Error as CError, SimDef, Strike
 
 __all__ = ["run", "BatchResult", "load_layout", "Layout", "STOP_ERROR", "STOP_NAMES",
@@ -144,6 +144,14 @@ def _lib_message(path, code, err):
     return f"{path}: {message}"
 
 
+def _set_models(d, name, path):
+    """Sets d.models to the model set `name` (the library's), or fails naming `path`."""
+    try:
+        d.models = _model_set(name, path)
+    except PoolError as e:
+        _fail(e.message)
+
+
 def _derive_motion(pos, vel, omega, r):
     if pos[2] > r + 1e-9 or vel[2] != 0.0:
         return 4
@@ -254,12 +262,18 @@ def _parse_document(doc):
                 _fail("options.max_time: must be > 0")
         if "max_events" in o:
             d.max_events = _integer(o["max_events"], "options.max_events", 1, 2 ** 31 - 1)
-    # models: each kind by a name the library knows (the parser's parse_models)
+    # models: a set's name, or an object whose "set" each kind overrides by a name the library
+    # knows (the parser's parse_models)
     m = doc.get("models")
     if m is not None:
+        if isinstance(m, str):
+            _set_models(d, m, "models")
+            m = {}
         if not isinstance(m, dict):
-            _fail("models: must be an object")
-        _fields(m, "models", MODEL_KINDS)
+            _fail("models: must be a model set name or an object")
+        _fields(m, "models", ("set",) + MODEL_KINDS)
+        if "set" in m:
+            _set_models(d, m["set"], "models.set")
         for kind in MODEL_KINDS:
             if kind not in m:
                 continue

@@ -30,11 +30,10 @@ def _definition(sim):
         {k: getattr(d.params, k) for k in _PARAM_FIELDS}
 
 
-def _models_if_chosen(d):
-    m = d.models
-    if m.cushion == 0 and m.ball_ball_friction == 0 and m.squirt == 0:
-        return None
-    return models_dict(m)
+def _models(d):
+    # Always: a document says which laws it means, whatever a reader's defaults are (a
+    # zero-initialised pool_models is thesis, not the defaults).
+    return models_dict(d.models)
 
 
 def layout(sim, t=None):
@@ -58,9 +57,7 @@ def layout(sim, t=None):
         doc = {"format": "libpool-scenario/1", "table": table, "params": params, "balls": out,
                "options": {"airborne": bool(d.airborne), "max_time": d.max_time,
                            "max_events": d.max_events}}
-        models = _models_if_chosen(d)
-        if models:
-            doc["models"] = models
+        doc["models"] = _models(d)
     return doc
 
 
@@ -129,9 +126,7 @@ def result(sim, sample_dt=None):
         final = sim.state_at(end)
         doc = {"format": "libpool-result/1", "table": table, "ball_radius": d.params.ball_radius,
                "params": params}
-        models = _models_if_chosen(d)
-        if models:
-            doc["models"] = models
+        doc["models"] = _models(d)
         doc["initial"] = [_state(b) for b in sim.state_at(0.0)]
         out_events = []
         for e in events:

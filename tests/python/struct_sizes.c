@@ -30,7 +30,8 @@ int main(void) {
 	FIELD(pool_params, mu_table, 0); FIELD(pool_params, e_table, 0);
 	FIELD(pool_params, ball_radius, 0); FIELD(pool_params, ball_mass, 0);
 	FIELD(pool_params, cue_mass, 0); FIELD(pool_params, throw_a, 0); FIELD(pool_params, throw_b, 0);
-	FIELD(pool_params, throw_c, 0); FIELD(pool_params, cue_end_mass, 1);
+	FIELD(pool_params, throw_c, 0); FIELD(pool_params, cue_end_mass, 0);
+	FIELD(pool_params, e_cushion_mathavan, 0); FIELD(pool_params, mu_cushion_mathavan, 1);
 	begin("pool_ball_state", sizeof(pool_ball_state));
 	FIELD(pool_ball_state, id, 0); FIELD(pool_ball_state, motion, 0); FIELD(pool_ball_state, pos, 0);
 	FIELD(pool_ball_state, vel, 0); FIELD(pool_ball_state, omega, 1);

@@ -731,6 +731,9 @@ static inline void hs_extreme_params(hs_shot *s, hs_rng *r) {
 	for (int k = 0; k < 2; ++k)
 		if (hs_chance(r, 0.5))
 			*es[k] = hs_chance(r, 0.4) ? 0.0 : hs_chance(r, 0.6) ? 1.0 : hs_u(r);
+	// The same extremes for mathavan2010's own nose parameters (no draw: the stream is unchanged).
+	p->e_cushion_mathavan = p->e_cushion;
+	p->mu_cushion_mathavan = p->mu_cushion;
 	if (hs_chance(r, 0.1))
 		p->g = hs_chance(r, 0.5) ? 1.62 : 24.8;
 	if (hs_chance(r, 0.4))
@@ -862,6 +865,11 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	hs_rng r = {seed * 0xD1B54A32D192ED03ull ^ ((uint64_t)index * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)cls << 56)};
 	hs_next(&r);
 	s->def = pool_default_sim_def();
+	// A quarter of the shots under the "thesis" laws (the 2012 work's), the rest the defaults: the
+	// top two bits of a Weyl sequence in the index, so neither the class (index modulo the
+	// classes) nor the generator's stream depends on it.
+	if (((uint64_t)index * 0x9E3779B97F4A7C15ull) >> 62 == 3)
+		s->def.models = pool_thesis_models();
 	s->def.max_events = HS_MAX_EVENTS;
 	s->def.max_time = HS_MAX_TIME;
 	switch (cls) {
@@ -898,9 +906,10 @@ static inline void hs_print_scenario(FILE *f, const hs_shot *s) {
 	        t->length, t->width, t->cushion_height, t->corner_mouth, t->side_mouth);
 	fprintf(f, " \"params\": {\"g\": %.17g, \"mu_slide\": %.17g, \"mu_roll\": %.17g, \"mu_spin\": %.17g, \"mu_ball\": %.17g, "
 	           "\"e_ball\": %.17g, \"mu_cushion\": %.17g, \"e_cushion\": %.17g, \"mu_table\": %.17g, \"e_table\": %.17g, "
-	           "\"ball_radius\": %.17g, \"ball_mass\": %.17g, \"cue_mass\": %.17g},\n",
+	           "\"ball_radius\": %.17g, \"ball_mass\": %.17g, \"cue_mass\": %.17g, \"e_cushion_mathavan\": %.17g, "
+	           "\"mu_cushion_mathavan\": %.17g},\n",
 	        p->g, p->mu_slide, p->mu_roll, p->mu_spin, p->mu_ball, p->e_ball, p->mu_cushion, p->e_cushion, p->mu_table,
-	        p->e_table, p->ball_radius, p->ball_mass, p->cue_mass);
+	        p->e_table, p->ball_radius, p->ball_mass, p->cue_mass, p->e_cushion_mathavan, p->mu_cushion_mathavan);
 	fprintf(f, " \"balls\": [");
 	for (int i = 0; i < s->n; ++i) {
 		const pool_ball_state *b = &s->balls[i];
@@ -917,6 +926,9 @@ static inline void hs_print_scenario(FILE *f, const hs_shot *s) {
 	}
 	fprintf(f, "],\n \"strike\": {\"ball\": %d, \"speed\": %.17g, \"phi\": %.17g, \"theta\": %.17g, \"a\": %.17g, \"b\": %.17g},\n",
 	        (int)s->balls[s->cue].id, s->speed, s->phi_deg, s->theta_deg, s->a, s->b);
+	fprintf(f, " \"models\": {\"cushion\": \"%s\", \"ball_ball_friction\": \"%s\", \"squirt\": \"%s\"},\n",
+	        pool_cushion_model_name(s->def.models.cushion), pool_ball_friction_model_name(s->def.models.ball_ball_friction),
+	        pool_squirt_model_name(s->def.models.squirt));
 	fprintf(f, " \"options\": {\"airborne\": %s, \"max_time\": %.17g, \"max_events\": %d}}\n",
 	        s->def.airborne ? "true" : "false", s->def.max_time, s->def.max_events);
 }

@@ -256,6 +256,7 @@ static void test_falling_on_resting(void **state) {
 static void test_cushion_hop(void **state) {
 	(void)state;
 	pool_sim_def def = air_def();
+	def.models = pool_thesis_models(); // Petit's law (mathavan2010 keeps the ball on the cloth)
 	const pool_params *p = &def.params;
 	const double R = p->ball_radius, g = p->g, h = def.table.cushion_height, W = def.table.width;
 	const double c = sqrt(R * R - (h - R) * (h - R)) / R, sn = (h - R) / R;

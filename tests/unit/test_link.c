@@ -240,6 +240,7 @@ static double gravity_step_gain(const pool_params *p, int balls) {
 /// topspin 3 v / R touching an object ball (id 1) in front of it, both sliding at PUSH_SPEED along
 /// x from x = 0.6 m; def's mu_ball is set to 0 first.
 static pool_sim *pushed_pair(pool_sim_def *def) {
+	def->models = pool_thesis_models(); // frictionless balls: the constant law at mu_ball 0
 	def->params.mu_ball = 0.0;
 	const double R = def->params.ball_radius, v = PUSH_SPEED;
 	pool_sim *sim = make_sim(def);
@@ -329,7 +330,7 @@ static void test_touching_ball_left_out(void **state) {
 // creeping at 1e-7 m/s, and 10,000 s later it had moved 1.1 mm into the other.
 static void test_sleeping_cluster_at_rest(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = thesis_sim_def(); // found under the 2012 laws: replayed under them
 	def.table.cushion_height = 0.03629;
 	def.max_time = 60.0;
 	pool_sim *sim = make_sim(&def);
@@ -354,7 +355,7 @@ static void test_sleeping_cluster_at_rest(void **state) {
 
 static void test_pinned_to_rail_closed_form(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = thesis_sim_def();
 	def.params.mu_cushion = 0.0;
 	const pool_params *p = &def.params;
 	const double R = p->ball_radius, m = p->ball_mass, mu = p->mu_slide, h = def.table.cushion_height;
@@ -535,7 +536,7 @@ static void test_hitter_stays_out(void **state) {
 // the three on together at a third of that.
 static void test_hit_through_a_cluster(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = thesis_sim_def();
 	def.params.mu_ball = 0.0;
 	const double R = def.params.ball_radius, e = def.params.e_ball;
 	pool_sim *sim = make_sim(&def);

@@ -102,8 +102,8 @@ static void make_shot(const pool_sim_def *def, int index, shot *s) {
 		s->strike = pool_break_strike(0.5 + urand() * 7.5);
 }
 
-static void run_shot(pool_sim *sim, const shot *s) {
-	assert_int_equal(pool_sim_reset(sim, NULL, NULL), POOL_OK);
+static void run_shot(pool_sim *sim, const pool_sim_def *def, const shot *s) {
+	assert_int_equal(pool_sim_reset(sim, def, NULL), POOL_OK);
 	for (int i = 0; i < s->n; ++i)
 		assert_int_equal(pool_sim_add_ball(sim, &s->balls[i], NULL), POOL_OK);
 	assert_int_equal(pool_sim_strike(sim, 0, &s->strike, NULL), POOL_OK);
@@ -222,7 +222,8 @@ static void test_random_shots(void **state) {
 	const char *env = getenv("POOL_TEST_SHOTS");
 	if (env && atoi(env) > 0)
 		shots = atoi(env);
-	pool_sim_def def = pool_default_sim_def();
+	// The default models, and every fourth shot the "thesis" set (the 2012 work's laws).
+	const pool_sim_def def = pool_default_sim_def(), thesis = thesis_sim_def();
 	pool_sim *sim, *again;
 	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
 	assert_int_equal(pool_sim_create(&def, &again, NULL), POOL_OK);
@@ -233,9 +234,10 @@ static void test_random_shots(void **state) {
 	int reruns = 0;
 	for (int k = 0; k < shots; ++k) {
 		shot s;
-		make_shot(&def, k, &s);
-		run_shot(sim, &s);
-		check_shot(sim, &def, &s, k < 200 ? 2000 : 0, &st);
+		const pool_sim_def *shot_def = k % 4 == 3 ? &thesis : &def;
+		make_shot(shot_def, k, &s);
+		run_shot(sim, shot_def, &s);
+		check_shot(sim, shot_def, &s, k < 200 ? 2000 : 0, &st);
 		if (k % 5 == 0) { // and hostile.h's stricter checks (dense overlap sampling, rest, contacts...)
 			hs_shot h;
 			memset(&h, 0, sizeof h);
@@ -243,7 +245,7 @@ static void test_random_shots(void **state) {
 			h.index = k;
 			// (test_random_shots' own layouts, not the soak's: its hint would name another shot)
 			h.origin = "pool-sim on the scenario below (a test_random_shots layout shot)";
-			h.def = def;
+			h.def = *shot_def;
 			h.n = s.n;
 			pool_ball_state initial[16];
 			for (int i = 0; i < s.n; ++i) {
@@ -269,7 +271,7 @@ static void test_random_shots(void **state) {
 			}
 		}
 		if (k % 50 == 0) { // determinism: a fresh run gives the same events and states, bit for bit
-			run_shot(again, &s);
+			run_shot(again, shot_def, &s);
 			int n1, n2;
 			const pool_event *e1 = pool_sim_events(sim, &n1), *e2 = pool_sim_events(again, &n2);
 			assert_int_equal(n1, n2);

@@ -157,7 +157,7 @@ static void test_pockets(void **state) {
 // degrees; after a rolling full hit the cue ball ends rolling at 2/7 of its impact speed.
 static void test_ball_ball_shots(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = thesis_sim_def(); // mu_ball 0: the constant law's frictionless balls
 	def.params.mu_ball = 0.0;
 	def.params.e_ball = 1.0;
 	pool_sim *sim = make_sim(&def);

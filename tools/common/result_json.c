@@ -50,6 +50,8 @@ static void write_params(pool_jw *w, const pool_params *p) {
 		{"throw_b", p->throw_b},
 		{"throw_c", p->throw_c},
 		{"cue_end_mass", p->cue_end_mass},
+		{"e_cushion_mathavan", p->e_cushion_mathavan},
+		{"mu_cushion_mathavan", p->mu_cushion_mathavan},
 	};
 	pool_jw_key(w, "params");
 	pool_jw_object(w, true);
@@ -279,8 +281,8 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 		pool_jw_key(&w, "ball_radius");
 		pool_jw_number(&w, options->def->params.ball_radius);
 		write_params(&w, &options->def->params);
-		if (!pool_models_are_default(&options->def->models))
-			pool_jw_models(&w, &options->def->models);
+		// Always: a result says which laws made it, whatever a reader's defaults are.
+		pool_jw_models(&w, &options->def->models);
 	}
 	// Every ball at t = 0: with the events' after-states, the start of each closed-form segment
 	// (docs/interfaces.md), from which a reader (pool-view) evaluates any instant exactly.

@@ -227,6 +227,8 @@ static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
 		{"throw_b", &p->throw_b},
 		{"throw_c", &p->throw_c},
 		{"cue_end_mass", &p->cue_end_mass},
+		{"e_cushion_mathavan", &p->e_cushion_mathavan},
+		{"mu_cushion_mathavan", &p->mu_cushion_mathavan},
 	};
 	size_t n = sizeof names / sizeof names[0];
 	const char *key;
@@ -285,14 +287,35 @@ static int parse_options(parse_ctx *ctx, json_t *options, pool_sim_def *def) {
 	return 0;
 }
 
-// "models" (docs/physics.md "Optional models"): each key a kind, each value a model name the library
-// knows (models_json.c).
+// A model set by name into *out ("default", "thesis"), or the message naming `path`.
+static int parse_model_set(parse_ctx *ctx, json_t *name, const char *path, pool_models *out) {
+	if (!json_is_string(name))
+		return fail(ctx, "%s: must be a string", path);
+	if (pool_models_preset(json_string_value(name), out) != POOL_OK) {
+		char shown[POOL_ESCAPE_SHORT], known[128];
+		pool_escape_text(shown, sizeof shown, json_string_value(name), json_string_length(name));
+		pool_model_set_names(known, sizeof known);
+		return fail(ctx, "%s: unknown model set \"%s\" (%s)", path, shown, known);
+	}
+	return 0;
+}
+
+// "models" (docs/physics.md "Models"): a model set by name ("thesis"), or an object whose "set"
+// (default "default") is overridden kind by kind, each value a model name the library knows
+// (models_json.c). Missing, it is the library's defaults.
 static int parse_models(parse_ctx *ctx, json_t *models, pool_models *out) {
+	*out = pool_default_models();
 	if (!models)
 		return 0;
+	if (json_is_string(models))
+		return parse_model_set(ctx, models, "models", out);
 	if (!json_is_object(models))
-		return fail(ctx, "models: must be an object");
-	if (check_fields(ctx, models, "models", pool_model_kinds))
+		return fail(ctx, "models: must be a model set name or an object");
+	static const char *const keys[] = {"set", "cushion", "ball_ball_friction", "squirt", NULL};
+	if (check_fields(ctx, models, "models", keys))
+		return -1;
+	json_t *set = json_object_get(models, "set");
+	if (set && parse_model_set(ctx, set, "models.set", out))
 		return -1;
 	for (const char *const *kind = pool_model_kinds; *kind; ++kind) {
 		json_t *v = json_object_get(models, *kind);

@@ -39,11 +39,13 @@ typedef struct pool_params {
 	double ball_radius; ///< m
 	double ball_mass;   ///< kg
 	double cue_mass;    ///< kg
-	// Parameters of the optional models (docs/physics.md "Optional models"; used only when selected).
+	// Parameters of the optional models (docs/physics.md "Models"; used only when selected).
 	double throw_a;      ///< 1, ball_ball_friction "alciatore": mu(v) = throw_a + throw_b exp(-throw_c v)
 	double throw_b;      ///< 1, see throw_a
 	double throw_c;      ///< s/m, see throw_a
 	double cue_end_mass; ///< kg, squirt "endmass": the cue's effective end mass (Alciatore TP A.31)
+	double e_cushion_mathavan;  ///< 1, cushion "mathavan2010": Stronge's restitution at the nose (Mathavan 2010's fit)
+	double mu_cushion_mathavan; ///< 1, cushion "mathavan2010": ball-nose sliding friction (Mathavan 2010's fit)
 } pool_params;
 
 /// docs/physics.md defaults.
