@@ -15,6 +15,8 @@ double pool_table_contact_distance(const pool_table_def *table, double ball_radi
 pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along) {
 	const double L = table->length, W = table->width;
 	const double corner = table->corner_mouth / sqrt(2.0);
+	if (table->pockets == POOL_POCKETS_NONE)
+		return POOL_POCKET_NONE;
 	switch (rail) {
 	case POOL_RAIL_SOUTH:
 	case POOL_RAIL_NORTH: {

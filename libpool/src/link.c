@@ -333,12 +333,16 @@ static pool_result pocket_strays(pool_sim *sim, int c, double t) {
 			continue;
 		pool_ball_state s;
 		pool_world_state_now(sim, k, t, &s);
+		// Pockets "jaws": over a hole; the thesis model: past a contact line inside a mouth.
+		const pool_pocket hole = pool_shape_hole_at(&sim->shape, s.pos.x, s.pos.y);
 		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
 			const int along_x = pool_rail_along_x((pool_rail)rail);
 			const double across = along_x ? s.pos.y : s.pos.x, along = along_x ? s.pos.x : s.pos.y;
 			const double line = pool_rail_contact_line(table, sim->dc, (pool_rail)rail);
-			const pool_pocket pocket = pool_pocket_at(table, (pool_rail)rail, along);
-			if (!(pool_rail_side((pool_rail)rail) * (across - line) > 0.0) || pocket == POOL_POCKET_NONE)
+			const pool_pocket pocket = table->pockets == POOL_POCKETS_JAWS ? hole : pool_pocket_at(table, (pool_rail)rail, along);
+			if (table->pockets != POOL_POCKETS_JAWS && !(pool_rail_side((pool_rail)rail) * (across - line) > 0.0))
+				continue;
+			if (pocket == POOL_POCKET_NONE)
 				continue;
 			if (pool_world_reserve_history(sim, 1, 1))
 				return POOL_ERR_OUT_OF_MEMORY;

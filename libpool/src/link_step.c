@@ -52,6 +52,7 @@
 #include "geometry.h"
 #include "lemke.h"
 #include "link_problem.h"
+#include "table_shape.h"
 #include "vec3.h"
 
 /// Fraction of an existing penetration the step removes (Baumgarte): a fifth per step spreads a
@@ -94,6 +95,7 @@ void pool_link_workspace_free(pool_link_workspace *ws, const pool_allocator *all
 
 typedef struct link_scene {
 	const pool_sim_def *def;
+	const pool_table_shape *shape; ///< pockets "jaws": the parts of the nose curve, else NULL
 	const pool_ball_state *s;
 	int n;
 	int planar;
@@ -133,7 +135,30 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 			}
 			++count;
 		}
-		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
+		// Pockets "jaws": each part of the nose curve whose span the centre faces (a facing, a
+		// jaw, a nose segment), its id for the warm start past the four rails'.
+		for (int k = 0; sc->shape && k < sc->shape->n_parts; ++k) {
+			if (!pool_shape_in_span(sc->shape, k, pa))
+				continue;
+			const pool_vec3 q = pool_shape_nearest(sc->shape, k, pa);
+			const double gap = pool_v3_len(pool_v3_sub(pa, q)) - R;
+			if (!(gap < sc->reach + POOL_LINK_MARGIN))
+				continue;
+			if (out) {
+				link_contact *c = &out[count];
+				c->kind = LINK_CUSHION;
+				c->a = a;
+				c->b = -1;
+				c->rail = 4 + k;
+				c->n = pool_shape_normal(sc->shape, k, pa);
+				c->ra = pool_v3_scale(c->n, -R);
+				c->rb = pool_v3(0.0, 0.0, 0.0);
+				c->gap = gap;
+				c->mu = p->mu_cushion;
+			}
+			++count;
+		}
+		for (int rail = POOL_RAIL_SOUTH; !sc->shape && rail <= POOL_RAIL_EAST; ++rail) {
 			const int along_x = pool_rail_along_x((pool_rail)rail);
 			const double across = (along_x ? pa.y : pa.x) - pool_rail_nose_line(table, (pool_rail)rail);
 			const double up = pa.z - table->cushion_height;
@@ -575,7 +600,8 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 		if (!finite_state(&s[k]))
 			return POOL_ERR_NON_FINITE;
 
-	link_scene sc = {def, s, n, !def->airborne, 0.0};
+	const pool_table_shape *shape = ws->shape && ws->shape->table.pockets == POOL_POCKETS_JAWS ? ws->shape : NULL;
+	link_scene sc = {def, shape, s, n, !def->airborne, 0.0};
 	sc.reach = speed_bound(&sc, dt) * dt;
 	const int nc = find_contacts(&sc, NULL);
 	if (nc > POOL_LINK_CONTACTS_MAX)

@@ -60,3 +60,8 @@ const char *pool_pocket_name(pool_pocket pocket) {
 	static const char *const names[] = {"sw", "se", "nw", "ne", "s", "n"};
 	return (int)pocket >= 0 && (int)pocket < 6 ? names[pocket] : NULL;
 }
+
+const char *pool_cushion_part_name(pool_cushion_part part) {
+	static const char *const names[] = {"nose", "facing", "jaw"};
+	return (int)part >= 0 && (int)part < 3 ? names[part] : NULL;
+}

@@ -18,49 +18,52 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	b->own_kind = POOL_EVENT_SPIN_STOP;
 	b->own_rail = POOL_RAIL_NONE;
 	b->own_pocket = POOL_POCKET_NONE;
+	b->own_part = -1;
 	if (!b->active)
 		return;
+	const pool_table_shape *shape = &sim->shape;
+	pool_event_type kind;
+	pool_site site;
 	if (s->motion == POOL_MOTION_LINKED) {
 		// The cluster's step, or a pocket first: the step's LCP holds a linked ball off the
-		// rails except inside a pocket mouth, where it crosses the contact line and falls.
+		// cushions, but not over a hole (or, in the thesis model, past a mouth's contact line).
 		b->own_time = sim->clusters[b->cluster].t_next;
 		b->own_kind = POOL_EVENT_LINK_STEP;
-		pool_rail rail;
-		pool_pocket pocket;
 		const double window = fmin(b->own_time, sim->def.max_time) - t;
 		if (!(window > 0.0))
 			return;
-		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &rail, &pocket);
-		if (tc < window && pocket != POOL_POCKET_NONE) {
+		const double tc = pool_predict_cushion_shape(shape, s, b->seg.acc, window, &kind, &site);
+		if (tc < window && kind == POOL_EVENT_POCKET) {
 			b->own_time = t + tc;
 			b->own_kind = POOL_EVENT_POCKET;
-			b->own_rail = rail;
-			b->own_pocket = pocket;
+			b->own_rail = site.rail;
+			b->own_pocket = site.pocket;
 		}
 		return;
 	}
 	if (s->motion == POOL_MOTION_AIRBORNE) {
 		// In flight: landing, a nose, a pocket or the table's edge; nothing changes by itself.
 		const double window = fmax(sim->def.max_time - t, 0.0);
-		const double dt = pool_predict_flight(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &b->own_kind,
-		                                      &b->own_rail, &b->own_pocket);
+		const double dt = pool_predict_flight_shape(shape, s, b->seg.acc, window, &b->own_kind, &site);
 		b->own_time = t + dt;
+		b->own_rail = site.rail;
+		b->own_pocket = site.pocket;
+		b->own_part = site.part;
 		return;
 	}
 	if (!b->seg.model->on_cloth)
 		return;
-	pool_event_type kind;
 	double dt = pool_segment_next_change(&b->seg, &kind);
 	if (b->seg.model->translating) {
-		pool_rail rail;
-		pool_pocket pocket;
-		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, dt, &rail, &pocket);
+		pool_event_type contact;
+		const double tc = pool_predict_cushion_shape(shape, s, b->seg.acc, dt, &contact, &site);
 		// A state change at the same instant goes first (its kind orders first).
 		if (tc < dt) {
 			dt = tc;
-			kind = pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
-			b->own_rail = rail;
-			b->own_pocket = pocket;
+			kind = contact;
+			b->own_rail = site.rail;
+			b->own_pocket = site.pocket;
+			b->own_part = site.part;
 		}
 	}
 	b->own_time = t + dt;

@@ -78,6 +78,11 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "allocator: alloc and free must both be set");
 	if ((r = pool_models_validate(&def->models, error)))
 		return r;
+	// The nose curve can be built for this ball (jaws tangent within their parts, facings that
+	// reach the holes, mouths and throats wider than the ball).
+	pool_table_shape shape;
+	if ((r = pool_table_shape_build(&def->table, R, &shape, error)))
+		return r;
 	return pool_error_ok(error);
 }
 
@@ -101,6 +106,8 @@ static void set_def(pool_sim *sim, const pool_sim_def *def) {
 	sim->def = *def;
 	sim->def.allocator = keep; // buffers stay with the allocator that made them
 	sim->dc = pool_table_contact_distance(&def->table, def->params.ball_radius);
+	(void)pool_table_shape_build(&def->table, def->params.ball_radius, &sim->shape, NULL); // validated
+	sim->link_ws.shape = &sim->shape;
 }
 
 pool_result pool_sim_create(const pool_sim_def *def, pool_sim **out, pool_error *error) {
@@ -278,7 +285,10 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		                      idx, R);
 	}
 	const double x = ball->pos.x, y = ball->pos.y;
-	if (x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol)
+	// On the cloth inside the contact lines; with pockets "jaws" also in a mouth or on a shelf,
+	// clear of the facings and jaws and not over a hole (where a ball can come to rest).
+	if ((x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol) &&
+	    !(sim->def.table.pockets == POOL_POCKETS_JAWS && pool_shape_on_cloth(&sim->shape, x, y, tol)))
 		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
 	for (int j = 0; j < sim->n; ++j) {
 		double d = pool_v3_len(pool_v3_sub(ball->pos, sim->cur[j].pos));
@@ -324,6 +334,7 @@ void pool_world_record_event(pool_sim *sim, double t, pool_event_type type, pool
 	e->type = type;
 	e->rail = rail;
 	e->pocket = pocket;
+	e->part = POOL_PART_NONE;
 	e->ball_count = m;
 	e->first_state = sim->n_states;
 	for (int k = 0; k < m; ++k)
@@ -403,11 +414,15 @@ static pool_result process(pool_sim *sim, int slot) {
 		sim->processed = now;
 		return r;
 	}
-	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE};
+	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE, &sim->shape, -1};
 	if (type == POOL_EVENT_BALL_CUSHION || type == POOL_EVENT_POCKET)
 		ctx.rail = b->own_rail;
 	if (type == POOL_EVENT_POCKET)
 		ctx.pocket = b->own_pocket;
+	if (type == POOL_EVENT_BALL_CUSHION && b->own_part >= 0) {
+		ctx.part = b->own_part;
+		ctx.pocket = b->own_pocket; // the pocket of a facing or jaw
+	}
 	int inv[2] = {slot, -1}, count = 1;
 	if (type == POOL_EVENT_BALL_BALL) {
 		// Body 1 is the ball with the smaller id, so the event reads the same from both slots.
@@ -467,6 +482,9 @@ static pool_result process(pool_sim *sim, int slot) {
 		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
 	// A pocket event names its pocket, not the rail whose mouth it was.
 	pool_world_record_event(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
+	if (type == POOL_EVENT_BALL_CUSHION && sim->n_events > 0)
+		sim->events[sim->n_events - 1].part = ctx.part >= 0 ? sim->shape.parts[ctx.part].part
+		                                      : sim->def.table.pockets == POOL_POCKETS_NONE ? POOL_PART_NOSE : POOL_PART_NONE;
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);

@@ -17,6 +17,7 @@
 #include "pool/link.h"
 #include "pool/sim.h"
 #include "segment.h"
+#include "table_shape.h"
 
 /// Partners a ball remembers for the LINK trigger: a collision streak per recent partner.
 #define POOL_LINK_PARTNERS 4
@@ -38,7 +39,8 @@ typedef struct pool_body {
 	double own_time;          ///< s, next own event (state change, cushion, pocket); absolute
 	pool_event_type own_kind; ///< its kind
 	pool_rail own_rail;       ///< for a cushion or pocket event
-	pool_pocket own_pocket;   ///< for a pocket event
+	pool_pocket own_pocket;   ///< for a pocket event; for a cushion event, the pocket of its facing or jaw
+	int own_part;             ///< for a cushion event with pockets "jaws": the part of the nose curve
 	int partner;              ///< other body of the pending event in the queue slot, or -1
 	int cluster;              ///< LINK cluster the ball belongs to, or -1
 	int changed;              ///< scratch of pool_schedule_after_event: among the changed bodies
@@ -64,6 +66,7 @@ struct pool_sim {
 	pool_sim_def def;
 	pool_allocator alloc;
 	double dc; // m, horizontal centre distance from a nose line at contact
+	pool_table_shape shape; // the table's nose curve for this ball radius (table_shape.h)
 
 	int n, cap_balls;
 	pool_ball_state *cur; // segment start states (pool_sim_balls)

@@ -29,7 +29,7 @@ from ._ffi import Models, SimDef, Strike, TableDef, Vec3, library_path
 
 __all__ = [
     "PoolError", "Ball", "EventRecord", "Sim", "TableDef", "Params", "Strike", "SimDef", "Vec3",
-    "Allocator", "table_preset", "default_table", "default_params", "default_sim_def",
+    "Allocator", "table_preset", "params_preset", "default_table", "default_params", "default_sim_def",
     "validate_table", "validate_params", "strike_velocities", "rack", "break_strike",
     "quartic_real_roots", "quartic_smallest_root_in", "library_path", "RESULT_NAMES",
     "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict",
@@ -175,9 +175,19 @@ def default_table():
 
 
 def table_preset(name):
-    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft". A name holding a NUL
-    character raises ValueError (TypeError if not a str); an unknown one, PoolError."""
+    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft", "snooker", "carom". A name
+    holding a NUL character raises ValueError (TypeError if not a str); an unknown one, PoolError.
+    Snooker and carom are played with their own balls and cloth: params_preset."""
     return _table_preset(name, "table_preset: name")
+
+
+def params_preset(name):
+    """The Params a table preset is played with (its balls and cloth; pool_params_preset)."""
+    p = Params()
+    code = _lib().pool_params_preset(_c_string(name, "params_preset: name"), byref(p))
+    if code < 0:
+        raise PoolError(code, f"table.preset: unknown preset '{name}'")
+    return p
 
 
 def _table_preset(name, arg):
@@ -355,6 +365,8 @@ def _sim_def(table, params, max_time, max_events, airborne, models=None):
     d = default_sim_def()
     if table is not None:
         d.table = _table_preset(table, "table") if isinstance(table, str) else table
+        if isinstance(table, str):
+            d.params = params_preset(table)  # a preset's own balls and cloth
     if params is not None:
         d.params = params
     if max_time is not None:
