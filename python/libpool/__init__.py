@@ -45,7 +45,7 @@ RESULT_NAMES = {
 _ERR_INVALID_ARGUMENT = -1
 _ERR_STATE = -10
 _STOP_NAMES = {0: None, 1: "rest", 2: "max_time", 3: "max_events"}
-_RACKS = {"8ball": 0, "9ball": 1}
+_RACKS = {"8ball": 0, "9ball": 1, "snooker": 2, "carom": 3}
 _MOTION_POCKETED = 6
 # Records are plain slotted dataclasses: frozen ones cost about twice as much to build, and a
 # break builds a few hundred of them.
@@ -248,11 +248,12 @@ def rack(kind, gap=0.0, table=None, params=None):
 
 def _rack_c(kind, gap, table, params):
     if kind not in _RACKS:
-        raise PoolError(_ERR_INVALID_ARGUMENT, f"rack: unknown kind '{kind}' (8ball or 9ball)")
+        raise PoolError(_ERR_INVALID_ARGUMENT,
+                        f"rack: unknown kind '{kind}' (8ball, 9ball, snooker or carom)")
     t = table if table is not None else default_table()
     p = params if params is not None else default_params()
-    out = (CBallState * 16)()
-    n = _check(_lib().pool_rack(_RACKS[kind], byref(t), byref(p), float(gap), out, 16))
+    out = (CBallState * 32)()
+    n = _check(_lib().pool_rack(_RACKS[kind], byref(t), byref(p), float(gap), out, 32))
     return out[:n]
 
 
@@ -506,6 +507,7 @@ class Sim:
         with self._lock:
             p = self._p()
             err = CError()
+            self._rack_states = None
             if table is None and params is None and max_time is None and max_events is None \
                     and airborne is None and models is None:
                 _check(_lib().pool_sim_reset(p, None, byref(err)), err)
@@ -547,11 +549,12 @@ class Sim:
                 self.add_ball(b.id, b.pos, b.vel, b.omega)
 
     def rack(self, kind, gap=0.0):
-        """Adds a standard rack ("8ball" or "9ball", cue ball id 0 on the head spot) for this
+        """Adds a standard rack ("8ball", "9ball", "snooker" or "carom"; cue ball id 0) for this
         sim's table and ball radius; returns the balls added."""
         with self._lock:
             states = _rack_c(kind, gap, self._def.table, self._def.params)
             self._add_c(states)
+            self._rack_states = (CBallState * len(states))(*states)
         return [Ball._from_c(s) for s in states]
 
     def strike(self, ball_id, speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0):
@@ -567,8 +570,13 @@ class Sim:
             _check(_lib().pool_sim_strike(self._p(), ball, byref(strike), byref(err)), err)
 
     def break_strike(self, speed, ball_id=0):
-        """The centre-ball break (pool_break_strike) on the cue ball."""
-        self.strike_c(ball_id, break_strike(speed))
+        """The centre-ball break on the cue ball: aimed at the first object ball of the last
+        rack() (pool_rack_break_strike), else straight along +x (pool_break_strike)."""
+        racked = getattr(self, "_rack_states", None)
+        if racked is not None:
+            self.strike_c(ball_id, _lib().pool_rack_break_strike(racked, len(racked), float(speed)))
+        else:
+            self.strike_c(ball_id, break_strike(speed))
 
     # running
     def step(self):

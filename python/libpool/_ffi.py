@@ -137,6 +137,7 @@ _PROTOTYPES = {
     "pool_rack": (c_int, [c_int, POINTER(TableDef), POINTER(Params), c_double,
                           POINTER(BallState), c_int]),
     "pool_break_strike": (Strike, [c_double]),
+    "pool_rack_break_strike": (Strike, [POINTER(BallState), c_int, c_double]),
     "pool_default_sim_def": (SimDef, []),
     "pool_cushion_model_name": (c_char_p, [c_int]),
     "pool_ball_friction_model_name": (c_char_p, [c_int]),

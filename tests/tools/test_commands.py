@@ -385,7 +385,7 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("huge", with_(lambda d: d["strike"].update(speed=1e300)), "strike.speed"),
             ("huge_pos", with_(ball(1, pos=[1e200, 0.5])), "balls[1].pos[0]"),
             ("table_string", with_(lambda d: d.update(table="wpa-9ft")), "table"),
-            ("preset", with_(lambda d: d.update(table={"preset": "snooker"})), "table.preset"),
+            ("preset", with_(lambda d: d.update(table={"preset": "billiards"})), "table.preset"),
             ("table_width", with_(lambda d: d.update(table={"width": -1})), "table.width"),
             ("airborne_type", with_(lambda d: d.update(options={"airborne": 1})), "options.airborne"),
             ("max_time", with_(lambda d: d.update(options={"max_time": 0})), "options.max_time"),
@@ -571,7 +571,7 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("bidi_table", doc_with(table={"w\u202eidth": 1}), "pool-sim: table.w\\u202eidth: unknown field\n"),
             ("c1_option", doc_with(options={"x\u009by": 1}), "pool-sim: options.x\\u009by: unknown field\n"),
             ("preset", doc_with(table={"preset": "\x1b[2Jwpa"}),
-             'pool-sim: table.preset: unknown preset "\\u001b[2Jwpa" (wpa-9ft, wpa-8ft, wpa-7ft)\n'),
+             'pool-sim: table.preset: unknown preset "\\u001b[2Jwpa" (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)\n'),
             # jansson refuses a NUL in a key; its message quotes the source text, escapes and all.
             ("nul_key", doc_with(params={"a\u0000b": 1}), "pool-sim: (document): malformed JSON at line 1"),
             # Raw control bytes in a string are not JSON: jansson's quote of them is escaped.
