@@ -161,7 +161,7 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 		pool_pocket pocket;
 		const int start = pool_shape_span(sh, rail, along_x ? s->pos.x : s->pos.y, &pocket);
 		double t;
-		if (g.gap < -POOL_TOUCH_TOLERANCE && start < 0) {
+		if (g.gap < -POOL_TOUCH_TOLERANCE && start < 0 && pocket != POOL_POCKET_NONE) {
 			involved[pocket] = 1; // in that pocket's mouth
 			t = pool_contact_first_falling_root(g.f, 2, window);
 		} else {
@@ -174,7 +174,8 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 				found(t, &best, POOL_EVENT_BALL_CUSHION, rail, POOL_POCKET_NONE, k, kind, site);
 				break;
 			}
-			involved[pocket] = 1;
+			if (pocket != POOL_POCKET_NONE)
+				involved[pocket] = 1;
 			t = pool_contact_first_falling_root_from(g.f, 2, t + JAWS_GHOST_STEP * (1.0 + t), window);
 		}
 	}
@@ -355,22 +356,45 @@ double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_stat
 		found(to, &best, POOL_EVENT_OFF_TABLE, np->rail, POOL_POCKET_NONE, -1, kind, site);
 	}
 	// Into a hole below the nose height (it drops), or out past its far side over the rail.
-	for (int p = 0; p < 6; ++p) {
+	for (int p = 0; sh->table.pockets == POOL_POCKETS_JAWS && p < 6; ++p) {
 		const pool_pocket_shape *ps = &sh->pockets[p];
 		const double dx = s->pos.x - ps->mx, dy = s->pos.y - ps->my;
 		if (sqrt(dx * dx + dy * dy) > ps->zone + span)
 			continue;
-		const double window = fmin(best, T);
+		double window = fmin(best, T);
 		const double t = enter_circle(&q, ps->hx, ps->hy, ps->hole_radius, window);
 		if (t <= window && path_at(&q, t).z < h)
 			found(t, &best, POOL_EVENT_POCKET, POOL_RAIL_NONE, (pool_pocket)p, -1, kind, site);
+		// Leaving the hole's circle beyond the throat (the line between the facings' ends), above
+		// the nose height: over the pocket's back and the rail, off the table.
+		window = fmin(best, T);
+		path w = relative(&q, ps->hx, ps->hy, q.p.z);
+		w.p.z = w.v.z = w.a.z = 0.0;
+		const pool_contact_gap g = sphere_gap(&w, ps->hole_radius);
+		const double out[5] = {-g.f[0], -g.f[1], -g.f[2], -g.f[3], -g.f[4]};
+		double te = window > 0.0 ? pool_contact_first_falling_root(out, 4, window) : INFINITY;
+		for (int i = 0; te <= window && i < 2; ++i) {
+			const pool_vec3 at = path_at(&q, te);
+			const double lx = ps->ex[1] - ps->ex[0], ly = ps->ey[1] - ps->ey[0];
+			const double side_m = lx * (ps->my - ps->ey[0]) - ly * (ps->mx - ps->ex[0]);
+			const double side_p = lx * (at.y - ps->ey[0]) - ly * (at.x - ps->ex[0]);
+			if (side_m * side_p < 0.0) {
+				found(te, &best, POOL_EVENT_OFF_TABLE, POOL_RAIL_NONE, POOL_POCKET_NONE, -1, kind, site);
+				break;
+			}
+			te = pool_contact_first_falling_root_from(out, 4, te + JAWS_GHOST_STEP * (1.0 + te), window);
+		}
 	}
 	if (*kind == POOL_EVENT_BALL_TABLE && isfinite(best)) {
+		// Landing over a hole pockets the ball; anywhere else off the cloth (the rail top, the
+		// pocket's back: crossed above the nose), it has left the table.
 		const pool_vec3 at = path_at(&q, best);
 		const pool_pocket pocket = pool_shape_hole_at(sh, at.x, at.y);
 		if (pocket != POOL_POCKET_NONE) {
 			*kind = POOL_EVENT_POCKET;
 			site->pocket = pocket;
+		} else if (!pool_shape_on_cloth(sh, at.x, at.y, 1e-6)) {
+			*kind = POOL_EVENT_OFF_TABLE;
 		}
 	}
 	return best;
@@ -378,7 +402,7 @@ double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_stat
 
 double pool_predict_cushion_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
                                   pool_event_type *kind, pool_site *site) {
-	if (sh->table.pockets == POOL_POCKETS_JAWS)
+	if (sh->table.pockets != POOL_POCKETS_MOUTH_LINES)
 		return pool_predict_cushion_jaws(sh, s, acc, T, kind, site);
 	site->part = -1;
 	const double t = pool_predict_cushion(&sh->table, sh->R, s, acc, T, &site->rail, &site->pocket);
@@ -388,7 +412,7 @@ double pool_predict_cushion_shape(const pool_table_shape *sh, const pool_ball_st
 
 double pool_predict_flight_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
                                  pool_event_type *kind, pool_site *site) {
-	if (sh->table.pockets == POOL_POCKETS_JAWS)
+	if (sh->table.pockets != POOL_POCKETS_MOUTH_LINES)
 		return pool_predict_flight_jaws(sh, s, acc, T, kind, site);
 	site->part = -1;
 	return pool_predict_flight(&sh->table, sh->R, s, acc, T, kind, &site->rail, &site->pocket);

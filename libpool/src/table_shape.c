@@ -167,6 +167,14 @@ pool_result pool_table_shape_build(const pool_table_def *table, double R, pool_t
 	sh->dc = pool_table_contact_distance(table, R);
 	for (int r = 0; r < 4; ++r)
 		sh->rail_segments[r][0] = sh->rail_segments[r][1] = -1;
+	if (table->pockets == POOL_POCKETS_NONE) {
+		// A carom table: each rail one nose segment from corner to corner.
+		add_nose(sh, POOL_RAIL_SOUTH, 0.0, table->length, 0);
+		add_nose(sh, POOL_RAIL_NORTH, 0.0, table->length, 0);
+		add_nose(sh, POOL_RAIL_WEST, 0.0, table->width, 0);
+		add_nose(sh, POOL_RAIL_EAST, 0.0, table->width, 0);
+		return POOL_OK;
+	}
 	if (table->pockets != POOL_POCKETS_JAWS)
 		return POOL_OK;
 	// Nose segments first (their indices are fixed: 6 slots), then the pockets' parts.

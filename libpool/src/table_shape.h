@@ -1,8 +1,9 @@
 // The nose curve of a table (docs/physics.md "Table geometry"): with pockets "jaws", per rail its
 // nose segments, per pocket its two facings, two jaws and its hole; built once from the table
 // and the ball radius when a simulation is created, and refused with a message naming the field
-// when it cannot be built. The thesis model ("mouth_lines") and carom ("none") keep the four
-// nose lines of geometry.h; the shape then only records the model.
+// when it cannot be built. A carom table ("none") is four nose segments from corner to corner;
+// the thesis model ("mouth_lines") keeps the four nose lines of geometry.h, and its shape only
+// records the table.
 #ifndef POOL_TABLE_SHAPE_H
 #define POOL_TABLE_SHAPE_H
 

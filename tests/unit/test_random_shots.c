@@ -219,6 +219,9 @@ static void test_random_shots(void **state) {
 	if (env && atoi(env) > 0)
 		shots = atoi(env);
 	pool_sim_def def = pool_default_sim_def();
+	// The thesis model's pockets: check_positions and hostile.h's checks are its contact lines
+	// and mouths (pockets "jaws": test_jaws_shots.c).
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	pool_sim *sim, *again;
 	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
 	assert_int_equal(pool_sim_create(&def, &again, NULL), POOL_OK);
@@ -315,6 +318,9 @@ static void test_hostile_shots(void **state) {
 			classes[n_classes++] = c;
 		}
 	pool_sim_def def = pool_default_sim_def();
+	// The thesis model's pockets: check_positions and hostile.h's checks are its contact lines
+	// and mouths (pockets "jaws": test_jaws_shots.c).
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	pool_sim *sim, *again;
 	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
 	assert_int_equal(pool_sim_create(&def, &again, NULL), POOL_OK);
