@@ -216,6 +216,8 @@ int main(int argc, char **argv) {
 		}
 		hook = pool_lcm_sim_publisher_event;
 		hook_user = publisher;
+		if (scenario.has_game)
+			pool_lcm_sim_publisher_set_game(publisher, &scenario.game, &scenario.def.table);
 	}
 #endif
 	clock_t start = clock();
@@ -244,7 +246,8 @@ int main(int argc, char **argv) {
 	if (o.summary)
 		print_summary(sim, cpu);
 
-	pool_result_options ro = {.sample_dt = o.sample_dt, .pretty = o.pretty, .def = &scenario.def};
+	pool_result_options ro = {.sample_dt = o.sample_dt, .pretty = o.pretty, .def = &scenario.def,
+	                          .game = scenario.has_game ? &scenario.game : NULL};
 	char *json = pool_result_json(sim, &ro);
 	if (!json) {
 		fprintf(stderr, "pool-sim: could not write the result (out of memory or sampling failed)\n");

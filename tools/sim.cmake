@@ -7,7 +7,7 @@ file(GLOB POOL_SCENARIO_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/co
 list(REMOVE_ITEM POOL_SCENARIO_SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/common/bench_util.c)
 add_library(pool_scenario STATIC ${POOL_SCENARIO_SOURCES})
 target_include_directories(pool_scenario PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/common)
-target_link_libraries(pool_scenario PUBLIC pool PkgConfig::JANSSON m)
+target_link_libraries(pool_scenario PUBLIC pool pool_games PkgConfig::JANSSON m)
 
 add_executable(pool-sim ${CMAKE_CURRENT_SOURCE_DIR}/pool_sim.c)
 target_link_libraries(pool-sim PRIVATE pool_scenario)

@@ -358,6 +358,8 @@ double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_stat
 	// Into a hole below the nose height (it drops), or out past its far side over the rail.
 	for (int p = 0; sh->table.pockets == POOL_POCKETS_JAWS && p < 6; ++p) {
 		const pool_pocket_shape *ps = &sh->pockets[p];
+		if (!sh->has_pocket[p])
+			continue;
 		const double dx = s->pos.x - ps->mx, dy = s->pos.y - ps->my;
 		if (sqrt(dx * dx + dy * dy) > ps->zone + span)
 			continue;

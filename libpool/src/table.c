@@ -216,9 +216,7 @@ pool_result pool_table_def_validate(const pool_table_def *t, pool_error *error) 
 	    (r = non_negative(t->corner_shelf, "table.corner_shelf", error)) ||
 	    (r = non_negative(t->side_shelf, "table.side_shelf", error)) ||
 	    (r = positive(t->corner_hole_radius, "table.corner_hole_radius", error)) ||
-	    (r = positive(t->side_hole_radius, "table.side_hole_radius", error)) ||
-	    (r = positive(t->corner_mouth, "table.corner_mouth", error)) ||
-	    (r = positive(t->side_mouth, "table.side_mouth", error)))
+	    (r = positive(t->side_hole_radius, "table.side_hole_radius", error)))
 		return r;
 	return pool_error_ok(error);
 }

@@ -177,30 +177,45 @@ pool_result pool_table_shape_build(const pool_table_def *table, double R, pool_t
 	}
 	if (table->pockets != POOL_POCKETS_JAWS)
 		return POOL_OK;
-	// Nose segments first (their indices are fixed: 6 slots), then the pockets' parts.
-	sh->n_parts = 6;
-	double ends[6][2];
+	// Nose segments first (at most 6), then the pockets' parts. A mouth of 0 means no such
+	// pockets: the corner is the two rails' meeting, a long rail without a side pocket one
+	// nose segment.
+	const int corners = table->corner_mouth > 0.0, sides = table->side_mouth > 0.0;
+	sh->n_parts = 2 + 2 * sides + 2; // the noses' slots: south, north (one or two each), west, east
+	double ends[6][2] = {{0.0, 0.0}, {table->length, 0.0}, {0.0, table->width}, {table->length, table->width},
+	                     {0.0, 0.0}, {0.0, 0.0}};
 	for (int p = 0; p < 6; ++p) {
+		if (p <= POOL_POCKET_NE ? !corners : !sides)
+			continue;
 		const pool_result r = build_pocket(sh, (pool_pocket)p, ends[p], error);
 		if (r)
 			return r;
+		sh->has_pocket[p] = 1;
 	}
 	const int count = sh->n_parts;
 	sh->n_parts = 0;
-	// South: sw .. s (west side), s (east side) .. se; north likewise; west sw .. nw; east se .. ne.
-	const struct {
+	// South: sw .. s (west side), s (east side) .. se (or sw .. se); north likewise; west sw ..
+	// nw; east se .. ne.
+	struct nose {
 		pool_rail rail;
 		double lo, hi;
 		const char *field;
-	} noses[6] = {
-		{POOL_RAIL_SOUTH, ends[POOL_POCKET_SW][0], ends[POOL_POCKET_S][0], "table.length"},
-		{POOL_RAIL_SOUTH, ends[POOL_POCKET_S][1], ends[POOL_POCKET_SE][0], "table.length"},
-		{POOL_RAIL_NORTH, ends[POOL_POCKET_NW][0], ends[POOL_POCKET_N][0], "table.length"},
-		{POOL_RAIL_NORTH, ends[POOL_POCKET_N][1], ends[POOL_POCKET_NE][0], "table.length"},
-		{POOL_RAIL_WEST, ends[POOL_POCKET_SW][1], ends[POOL_POCKET_NW][1], "table.width"},
-		{POOL_RAIL_EAST, ends[POOL_POCKET_SE][1], ends[POOL_POCKET_NE][1], "table.width"},
-	};
-	for (int k = 0; k < 6; ++k) {
+	} noses[6];
+	int nn = 0;
+	const pool_rail longs[2] = {POOL_RAIL_SOUTH, POOL_RAIL_NORTH};
+	const pool_pocket lo_corner[2] = {POOL_POCKET_SW, POOL_POCKET_NW}, hi_corner[2] = {POOL_POCKET_SE, POOL_POCKET_NE};
+	const pool_pocket side[2] = {POOL_POCKET_S, POOL_POCKET_N};
+	for (int k = 0; k < 2; ++k) {
+		if (sides) {
+			noses[nn++] = (struct nose){longs[k], ends[lo_corner[k]][0], ends[side[k]][0], "table.length"};
+			noses[nn++] = (struct nose){longs[k], ends[side[k]][1], ends[hi_corner[k]][0], "table.length"};
+		} else {
+			noses[nn++] = (struct nose){longs[k], ends[lo_corner[k]][0], ends[hi_corner[k]][0], "table.length"};
+		}
+	}
+	noses[nn++] = (struct nose){POOL_RAIL_WEST, corners ? ends[POOL_POCKET_SW][1] : 0.0, corners ? ends[POOL_POCKET_NW][1] : table->width, "table.width"};
+	noses[nn++] = (struct nose){POOL_RAIL_EAST, corners ? ends[POOL_POCKET_SE][1] : 0.0, corners ? ends[POOL_POCKET_NE][1] : table->width, "table.width"};
+	for (int k = 0; k < nn; ++k) {
 		if (!(noses[k].hi > noses[k].lo))
 			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "%s: too short for its pockets' mouths and jaws",
 			                      noses[k].field);
@@ -208,16 +223,25 @@ pool_result pool_table_shape_build(const pool_table_def *table, double R, pool_t
 		add_nose(sh, noses[k].rail, noses[k].lo, noses[k].hi, slot);
 	}
 	sh->n_parts = count;
+	// Along each rail, the pocket of each gap between (and beyond) its nose segments.
+	for (int r = 0; r < 4; ++r)
+		for (int g = 0; g < 3; ++g)
+			sh->gap_pocket[r][g] = POOL_POCKET_NONE;
+	for (int k = 0; k < 2; ++k) {
+		int g = 0;
+		sh->gap_pocket[longs[k]][g++] = corners ? lo_corner[k] : POOL_POCKET_NONE;
+		if (sides)
+			sh->gap_pocket[longs[k]][g++] = side[k];
+		sh->gap_pocket[longs[k]][g] = corners ? hi_corner[k] : POOL_POCKET_NONE;
+	}
+	sh->gap_pocket[POOL_RAIL_WEST][0] = corners ? POOL_POCKET_SW : POOL_POCKET_NONE;
+	sh->gap_pocket[POOL_RAIL_WEST][1] = corners ? POOL_POCKET_NW : POOL_POCKET_NONE;
+	sh->gap_pocket[POOL_RAIL_EAST][0] = corners ? POOL_POCKET_SE : POOL_POCKET_NONE;
+	sh->gap_pocket[POOL_RAIL_EAST][1] = corners ? POOL_POCKET_NE : POOL_POCKET_NONE;
 	return POOL_OK;
 }
 
 int pool_shape_span(const pool_table_shape *sh, pool_rail rail, double along, pool_pocket *pocket) {
-	static const pool_pocket gaps[4][3] = {
-		{POOL_POCKET_SW, POOL_POCKET_S, POOL_POCKET_SE},
-		{POOL_POCKET_NW, POOL_POCKET_N, POOL_POCKET_NE},
-		{POOL_POCKET_SW, POOL_POCKET_NW, POOL_POCKET_NONE},
-		{POOL_POCKET_SE, POOL_POCKET_NE, POOL_POCKET_NONE},
-	};
 	int gap = 0;
 	for (int slot = 0; slot < 2; ++slot) {
 		const int k = sh->rail_segments[rail][slot];
@@ -233,7 +257,7 @@ int pool_shape_span(const pool_table_shape *sh, pool_rail rail, double along, po
 		}
 		gap = slot + 1;
 	}
-	*pocket = gaps[rail][gap];
+	*pocket = sh->gap_pocket[rail][gap];
 	return -1;
 }
 
@@ -291,8 +315,29 @@ pool_pocket pool_shape_hole_at(const pool_table_shape *sh, double x, double y) {
 		return POOL_POCKET_NONE;
 	for (int p = 0; p < 6; ++p) {
 		const pool_pocket_shape *ps = &sh->pockets[p];
+		if (!sh->has_pocket[p])
+			continue;
 		const double dx = x - ps->hx, dy = y - ps->hy;
 		if (dx * dx + dy * dy < ps->hole_radius * ps->hole_radius)
+			return (pool_pocket)p;
+	}
+	return POOL_POCKET_NONE;
+}
+
+pool_pocket pool_table_hole_at(const pool_table_def *t, double x, double y) {
+	if (t->pockets != POOL_POCKETS_JAWS)
+		return POOL_POCKET_NONE;
+	for (int p = 0; p < 6; ++p) {
+		cushion_end e[2];
+		cushion_ends(t, (pool_pocket)p, e);
+		const int corner = p <= POOL_POCKET_NE;
+		if (!((corner ? t->corner_mouth : t->side_mouth) > 0.0))
+			continue; // no such pockets
+		const double rh = corner ? t->corner_hole_radius : t->side_hole_radius;
+		const double back = (corner ? t->corner_shelf : t->side_shelf) + rh;
+		const double ox = e[0].mx + e[1].mx, oy = e[0].my + e[1].my, ol = sqrt(ox * ox + oy * oy);
+		const double hx = 0.5 * (e[0].vx + e[1].vx) + back * ox / ol, hy = 0.5 * (e[0].vy + e[1].vy) + back * oy / ol;
+		if ((x - hx) * (x - hx) + (y - hy) * (y - hy) < rh * rh)
 			return (pool_pocket)p;
 	}
 	return POOL_POCKET_NONE;

@@ -51,7 +51,9 @@ typedef struct pool_table_shape {
 	int n_parts;
 	pool_nose_part parts[POOL_SHAPE_MAX_PARTS]; ///< nose segments first (by rail), then each pocket's
 	pool_pocket_shape pockets[6];               ///< by pool_pocket
+	int has_pocket[6];       ///< the pocket exists (a mouth of 0 means none of its kind)
 	int rail_segments[4][2]; ///< per rail, its nose segments in order along it (-1: none)
+	pool_pocket gap_pocket[4][3]; ///< per rail, the pocket before, between and after its segments
 } pool_table_shape;
 
 /// Builds the shape (with pockets "jaws": the nose curve; otherwise just the table). Refuses
@@ -74,6 +76,10 @@ pool_vec3 pool_shape_normal(const pool_table_shape *shape, int k, pool_vec3 pos)
 
 /// The pocket whose hole holds the point (x, y) of the cloth, or POOL_POCKET_NONE.
 pool_pocket pool_shape_hole_at(const pool_table_shape *shape, double x, double y);
+
+/// The same from the table alone (no shape built): its holes' centres from the mouths, shelves
+/// and hole radii; POOL_POCKET_NONE unless the pocket model is "jaws".
+pool_pocket pool_table_hole_at(const pool_table_def *table, double x, double y);
 
 /// Distance (m) from the point (x, y, z) to the nose curve (every part), and the part it is
 /// nearest to (*part, may be NULL).

@@ -696,7 +696,7 @@ class Sim:
 def __getattr__(name):
     # libpool.batch (NumPy) is imported on first use, so `import libpool` needs nothing but the
     # standard library.
-    if name == "batch":
+    if name in ("batch", "game", "gym", "aim"):
         import importlib
-        return importlib.import_module(".batch", __name__)
+        return importlib.import_module("." + name, __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

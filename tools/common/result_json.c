@@ -1,5 +1,6 @@
 // The libpool-result/1 writer (docs/interfaces.md): events with the after-states of their balls,
 // every ball at the end, statistics, and optionally the trajectories sampled for plots.
+#include "game_json.h"
 #include "json_writer.h"
 #include "models_json.h"
 #include "scenario.h"
@@ -288,7 +289,16 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	pool_jw_end(&w, ']');
 	write_stats(&w, sim, events, count, final_states, balls, end);
 	bool ok = true;
-	if (options->sample_dt > 0.0 && isfinite(options->sample_dt) && balls > 0)
+	if (options->game && options->def) {
+		pool_game_shot shot = pool_game_shot_of_sim(sim);
+		pool_game_result judged;
+		ok = pool_game_judge(options->game, &shot, &options->def->table, &judged, NULL) == POOL_OK;
+		if (ok) {
+			pool_jw_key(&w, "game");
+			pool_jw_game_result(&w, options->game->rules, &judged);
+		}
+	}
+	if (ok && options->sample_dt > 0.0 && isfinite(options->sample_dt) && balls > 0)
 		ok = write_samples(&w, sim, events, count, options->sample_dt, end);
 	pool_jw_end(&w, '}');
 	free(final_states);

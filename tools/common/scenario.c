@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "game_json.h"
 #include "models_json.h"
 #include "read_input.h"
 #include "text_escape.h"
@@ -572,9 +573,24 @@ static int check_with_sim(parse_ctx *ctx, const pool_scenario *s) {
 	return status;
 }
 
+// "game" (docs/interfaces.md "Games"): the rules judge the struck shot, on a table of their balls.
+static int parse_game(parse_ctx *ctx, json_t *game, pool_scenario *s) {
+	if (!game)
+		return 0;
+	if (pool_game_json_parse(game, "game", &s->game, ctx->err, ctx->err_size))
+		return -1;
+	pool_error e;
+	if (pool_game_check_balls(&s->game, s->balls, s->ball_count, &e) != POOL_OK)
+		return fail(ctx, "%s", e.message);
+	if (!s->has_strike)
+		return fail(ctx, "game: the rules judge a struck shot: the scenario needs a strike");
+	s->has_game = true;
+	return 0;
+}
+
 static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 	static const char *const fields[] = {"format", "name", "description", "table", "params",
-	                                     "balls", "strike", "options", "models", NULL};
+	                                     "balls", "strike", "options", "models", "game", NULL};
 	if (!json_is_object(root))
 		return fail(ctx, "(document): must be a JSON object");
 	if (check_fields(ctx, root, "", fields))
@@ -621,6 +637,8 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 
 	json_t *strike = json_object_get(root, "strike");
 	if (strike && parse_strike(ctx, strike, s))
+		return -1;
+	if (parse_game(ctx, json_object_get(root, "game"), s))
 		return -1;
 	return s->def.airborne ? check_airborne(ctx, s) : check_with_sim(ctx, s);
 }

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "pool/game.h"
 #include "pool/pool.h"
 
 #ifdef __cplusplus
@@ -22,6 +23,8 @@ typedef struct pool_scenario {
 	bool has_strike;         ///< whether a strike is applied at t = 0
 	int strike_ball;         ///< id of the struck ball
 	pool_strike strike;      ///< cue parameters (radians)
+	bool has_game;           ///< "game" given: the shot is judged by these rules (needs a strike)
+	pool_game_state game;    ///< the rules and the state before the shot (game_json.h)
 } pool_scenario;
 
 /// Parses and validates a scenario document. Returns 0, or -1 with a message naming the field
@@ -57,6 +60,8 @@ typedef struct pool_result_options {
 	bool pretty;      ///< indent the JSON
 	const pool_sim_def *def; ///< optional; when set, "table" and "ball_radius" are written too,
 	                         ///< and "models" when they are not the defaults (models_json.h)
+	const pool_game_state *game; ///< optional; when set, the shot is judged under these rules and
+	                             ///< "game" is written after "stats" (docs/interfaces.md "Games")
 } pool_result_options;
 
 /// The libpool-result/1 document of a finished (or stopped) simulation, malloc'd, NUL-terminated;
