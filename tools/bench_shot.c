@@ -115,10 +115,10 @@ static double urand(void) {
 }
 
 int main(int argc, char **argv) {
-	int runs = 2000;
+	int runs = 2000, pockets = POOL_POCKETS_JAWS;
 	for (int i = 1; i < argc; ++i) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-			printf("usage: pool-bench-shot [--runs N]\n"
+			printf("usage: pool-bench-shot [--runs N] [--pockets jaws|mouth_lines]\n"
 			       "Times whole shots with libpool, reusing one pool_sim (pool_sim_reset):\n"
 			       "  break-frozen      15-ball rack, gap 0, centre-ball break at 8 m/s\n"
 			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
@@ -130,10 +130,17 @@ int main(int argc, char **argv) {
 			       "  break (airborne)  the 0.1 mm break with the cue elevated 5 deg, airborne motion\n"
 			       "Prints median, minimum and mean time per shot over N runs (default 2000), events\n"
 			       "and LINK steps per shot, events per second, the library's peak heap bytes and allocation count before and after the\n"
-			       "runs (they must not grow), the process's peak resident memory, and the machine.\n");
+			       "runs (they must not grow), the process's peak resident memory, and the machine.\n"
+			       "--pockets: the table's pocket model (default jaws; mouth_lines: the thesis model).\n");
 			return 0;
 		}
-		if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
+		if (strcmp(argv[i], "--pockets") == 0 && i + 1 < argc) {
+			pockets = pool_pockets_model_from_name(argv[++i]);
+			if (pockets < 0) {
+				fprintf(stderr, "pool-bench-shot: --pockets: jaws, mouth_lines or none\n");
+				return 2;
+			}
+		} else if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
 			runs = atoi(argv[++i]);
 			if (runs <= 0) {
 				fprintf(stderr, "pool-bench-shot: --runs: must be > 0\n");
@@ -146,6 +153,8 @@ int main(int argc, char **argv) {
 	}
 	print_machine();
 	pool_sim_def def = pool_default_sim_def();
+	def.table.pockets = (pool_pockets_model)pockets;
+	printf("pockets: %s\n", pool_pockets_model_name(def.table.pockets));
 	def.allocator = (pool_allocator){counting_alloc, counting_free, NULL};
 	pool_sim *sim;
 	pool_error err;
