@@ -121,13 +121,15 @@ class Ball:
 @dataclass(**_DATACLASS_OPTS)
 class EventRecord:
     """One processed event: time (s), type name ("ball_ball", ...), ids of the balls involved,
-    rail and pocket names (None when not applicable), and the balls' states just after it."""
+    rail and pocket names (None when not applicable), the balls' states just after it, and the
+    part of the cushion a ball_cushion event touched ("nose", "facing", "jaw"; None otherwise)."""
     time: float
     type: str
     balls: Tuple[int, ...]
     rail: Optional[str]
     pocket: Optional[str]
     after: Tuple[Ball, ...]
+    part: Optional[str] = None
 
 
 _name_cache = {}
@@ -152,7 +154,7 @@ def _motion_name(m):
 # Raw layouts for bulk reads (one string_at + iter_unpack instead of a ctypes attribute access
 # per number); checked against the ctypes mirrors at import, which the tests check against C.
 _BALL_FMT = struct.Struct("=ii9d")
-_EVENT_FMT = struct.Struct("=d5i4x")
+_EVENT_FMT = struct.Struct("=d6i")  # time, type, rail, pocket, ball_count, first_state, part
 assert _BALL_FMT.size == sizeof(CBallState) and _EVENT_FMT.size == sizeof(CEvent)
 
 
@@ -672,12 +674,13 @@ class Sim:
             afters = [tuple(states[e[5]:e[5] + e[4]]) for e in events]
         else:
             afters = [tuple(_unpack_balls(raw)) for raw in apart]
-        ev_name, rail_name, pocket_name = (_name_table("pool_event_type_name"),
-                                           _name_table("pool_rail_name"),
-                                           _name_table("pool_pocket_name"))
+        ev_name, rail_name, pocket_name, part_name = (_name_table("pool_event_type_name"),
+                                                      _name_table("pool_rail_name"),
+                                                      _name_table("pool_pocket_name"),
+                                                      _name_table("pool_cushion_part_name"))
         return [EventRecord(t, ev_name(ty), tuple(b.id for b in after), rail_name(r),
-                            pocket_name(pk), after)
-                for (t, ty, r, pk, _, _), after in zip(events, afters)]
+                            pocket_name(pk), after, part_name(pt))
+                for (t, ty, r, pk, _, _, pt), after in zip(events, afters)]
 
     def state_at(self, t):
         """Every ball at time t (exact, closed form between events), by insertion order; t must
