@@ -18,6 +18,7 @@ import select
 import shutil
 import stat
 import subprocess
+import tempfile
 import sys
 import threading
 import time
@@ -691,6 +692,41 @@ class TestRack(unittest.TestCase, ResultChecks):
             assert_printable(self, r.stderr, repr(args))
             self.assertIn(expect, r.stderr, args)
             self.assertLess(len(r.stderr), 400, args)
+
+    def test_snooker_and_carom(self):
+        # Snooker: 15 reds behind the pink, the colours on the WPBSA spots (ids 20 + value), the
+        # cue ball in the D; the snooker table's own balls; the break goes through pool-sim.
+        doc, text = self.rack("snooker")
+        self.assertEqual(doc["table"], {"preset": "snooker"})
+        ids = sorted(b["id"] for b in doc["balls"])
+        self.assertEqual(ids, [0] + list(range(1, 16)) + list(range(22, 28)))
+        pos = {b["id"]: b["pos"] for b in doc["balls"]}
+        L, W, R = 3.569, 1.778, 0.02625
+        self.assertAlmostEqual(pos[27][0], L - 0.324, places=12)       # black on its spot
+        self.assertAlmostEqual(pos[26][0], 0.75 * L, places=12)        # pink: the pyramid spot
+        self.assertAlmostEqual(pos[25][0], 0.5 * L, places=12)         # blue: the centre
+        self.assertAlmostEqual(pos[22][1], W / 2 - 0.292, places=12)   # yellow: the D's corner
+        self.assertGreater(min(pos[k][0] for k in range(1, 16)), pos[26][0] + 2 * R)
+        self.assertEqual(run([ARGS.pool_rack, "--table", "snooker"]).stdout, text.encode())
+        res = self.sim_result(text)
+        self.assertEqual(res["stats"]["stop_reason"], "rest")
+        self.assertEqual(res["ball_radius"], R)
+        # Carom: three balls, red on the foot spot, the cue ball beside the yellow.
+        doc, text = self.rack("carom")
+        self.assertEqual(sorted(b["id"] for b in doc["balls"]), [0, 1, 2])
+        res = self.sim_result(text)
+        self.assertEqual(res["table"]["pockets"], "none")
+        parts = {e.get("part") for e in res["events"] if e["type"] == "ball_cushion"}
+        self.assertLessEqual(parts, {"nose"})
+
+    def sim_result(self, scenario_text):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "s.json")
+            with open(path, "w") as f:
+                f.write(scenario_text)
+            r = run([ARGS.pool_sim, path])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return json.loads(r.stdout)
 
     def test_racks_are_tight_and_on_the_table(self):
         for kind, n in (("8ball", 16), ("9ball", 10)):
