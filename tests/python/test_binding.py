@@ -209,7 +209,7 @@ class Errors(unittest.TestCase):
         self.check(lambda: libpool.Sim(table="snooker-12ft"), "POOL_ERR_UNKNOWN_PRESET", "table.preset")
         self.check(lambda: libpool.Sim(max_time=float("nan")), "POOL_ERR_NON_FINITE", "")
         self.check(lambda: libpool.Sim().add_ball(0, (-1.0, 0.5)), "POOL_ERR_OFF_TABLE", "balls[0].pos")
-        self.check(lambda: libpool.rack("snooker"), "POOL_ERR_INVALID_ARGUMENT", "rack")
+        self.check(lambda: libpool.rack("10ball"), "POOL_ERR_INVALID_ARGUMENT", "rack")
 
 
 class Reuse(unittest.TestCase):

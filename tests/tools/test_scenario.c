@@ -388,7 +388,7 @@ static void test_echoed_input_is_escaped(void **state) {
 		{"{\"format\": \"libpool-scenario/1\", \"params\": {\"x\\ny\": 1}, \"balls\": []}",
 		 "params.x\\u000ay: unknown field"},
 		{"{\"format\": \"libpool-scenario/1\", \"table\": {\"preset\": \"\\u001b[2J\"}, \"balls\": []}",
-		 "table.preset: unknown preset \"\\u001b[2J\" (wpa-9ft, wpa-8ft, wpa-7ft)"},
+		 "table.preset: unknown preset \"\\u001b[2J\" (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)"},
 		{"{\"format\": \"libpool-scenario/1\", \"\x1b[2J\": 1}",
 		 "(document): malformed JSON at line 1, column 34: control character 0x1b near '\"'"},
 	};
