@@ -707,7 +707,7 @@ class TestRack(unittest.TestCase, ResultChecks):
         self.assertAlmostEqual(pos[25][0], 0.5 * L, places=12)         # blue: the centre
         self.assertAlmostEqual(pos[22][1], W / 2 - 0.292, places=12)   # yellow: the D's corner
         self.assertGreater(min(pos[k][0] for k in range(1, 16)), pos[26][0] + 2 * R)
-        self.assertEqual(run([ARGS.pool_rack, "--table", "snooker"]).stdout, text.encode())
+        self.assertEqual(run([ARGS.pool_rack, "--table", "snooker"]).stdout, text)
         res = self.sim_result(text)
         self.assertEqual(res["stats"]["stop_reason"], "rest")
         self.assertEqual(res["ball_radius"], R)
@@ -722,7 +722,7 @@ class TestRack(unittest.TestCase, ResultChecks):
     def sim_result(self, scenario_text):
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "s.json")
-            with open(path, "w") as f:
+            with open(path, "wb") as f:
                 f.write(scenario_text)
             r = run([ARGS.pool_sim, path])
             self.assertEqual(r.returncode, 0, r.stderr)
