@@ -79,7 +79,10 @@ int main(void) {
 		const scene *sc = &scenes[k];
 		pool_sim_def def = pool_default_sim_def();
 		if (sc->rules == POOL_GAME_THREE_CUSHION) { // the carom table of pool-game
-			pool_table_preset("carom", &def.table);
+			def.table.length = 2.84;
+			def.table.width = 1.42;
+			def.table.cushion_height = 0.037;
+			def.table.corner_mouth = def.table.side_mouth = 0.0;
 			def.params.ball_radius = 0.03075;
 			def.params.ball_mass = 0.21;
 		}

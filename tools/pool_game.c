@@ -428,7 +428,12 @@ static int read_answer(game *g, const char *line, answer *a) {
 		if (base)
 			json_object_update(base, state);
 		if (!base || pool_game_json_parse_state(base, "answer", g->rules, &parsed, err, sizeof err) != 0) {
-			status = base ? shot_error(shot, "%s", err) : (fprintf(stderr, "%s: out of memory\n", PROGRAM), POOL_EXIT_INTERNAL);
+			if (base) {
+				status = shot_error(shot, "%s", err);
+			} else {
+				fprintf(stderr, "%s: out of memory\n", PROGRAM);
+				status = POOL_EXIT_INTERNAL;
+			}
 			json_decref(base);
 			json_decref(state);
 			goto done;

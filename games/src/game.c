@@ -119,8 +119,8 @@ pool_result pool_game_state_validate(const pool_game_state *s, pool_error *error
 		if (s->rules != POOL_GAME_8BALL)
 			return pool_game_fail(error, POOL_ERR_INVALID_ARGUMENT, "game.state.called.ball: only in 8ball, not %s", rules);
 		if (s->called_ball < 1 || s->called_ball > 15)
-			return pool_game_fail(error, POOL_ERR_INVALID_ARGUMENT, "game.state.called.ball: %d is not an object ball (1 to 15)",
-			                      (int)s->called_ball);
+			return pool_game_fail(error, POOL_ERR_INVALID_ARGUMENT,
+			                      "game.state.called.ball: %d is not an object ball (1 to 15)", (int)s->called_ball);
 	}
 	if (s->called_pocket != POOL_POCKET_NONE) {
 		if (s->rules != POOL_GAME_8BALL)
@@ -214,7 +214,8 @@ pool_result pool_game_judge(const pool_game_state *state, const pool_game_shot *
 	if (error)
 		error->message[0] = '\0';
 	if (!shot || !table || !result)
-		return pool_game_fail(error, POOL_ERR_INVALID_ARGUMENT, "%s: missing", !shot ? "shot" : !table ? "table" : "result");
+		return pool_game_fail(error, POOL_ERR_INVALID_ARGUMENT, "%s: missing",
+		                      !shot ? "shot" : !table ? "table" : "result");
 	pool_result r = pool_game_check_balls(state, shot->balls, shot->ball_count, error);
 	if (r != POOL_OK)
 		return r;

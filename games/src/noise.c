@@ -3,9 +3,12 @@
 // sample and index.
 #include "pool/noise.h"
 
+#include "rules.h"
+
+#define BAD POOL_ERR_INVALID_ARGUMENT
+
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,17 +36,6 @@ pool_result pool_noise_preset(const char *name, pool_noise *noise) {
 	return POOL_ERR_INVALID_ARGUMENT;
 }
 
-static pool_result fail(pool_error *error, const char *format, ...) __attribute__((format(printf, 2, 3)));
-static pool_result fail(pool_error *error, const char *format, ...) {
-	if (error) {
-		va_list args;
-		va_start(args, format);
-		vsnprintf(error->message, sizeof error->message, format, args);
-		va_end(args);
-	}
-	return POOL_ERR_INVALID_ARGUMENT;
-}
-
 // The spec echoed in a message: printable ASCII only (a terminal must not act on the input).
 static const char *printable(char *text) {
 	for (char *c = text; *c; ++c)
@@ -54,12 +46,12 @@ static const char *printable(char *text) {
 
 pool_result pool_noise_validate(const pool_noise *noise, pool_error *error) {
 	if (!noise)
-		return fail(error, "noise: missing");
+		return pool_game_fail(error, BAD, "noise: missing");
 	const double v[5] = {noise->speed, noise->phi, noise->theta, noise->a, noise->b};
 	static const char *const names[5] = {"speed", "phi", "theta", "a", "b"};
 	for (int k = 0; k < 5; ++k)
 		if (!(isfinite(v[k]) && v[k] >= 0.0))
-			return fail(error, "noise: %s: the standard deviation must be finite and >= 0", names[k]);
+			return pool_game_fail(error, BAD, "noise: %s: the standard deviation must be finite and >= 0", names[k]);
 	if (error)
 		error->message[0] = '\0';
 	return POOL_OK;
@@ -67,7 +59,7 @@ pool_result pool_noise_validate(const pool_noise *noise, pool_error *error) {
 
 pool_result pool_noise_parse(const char *spec, pool_noise *noise, pool_error *error) {
 	if (!spec || !noise)
-		return fail(error, "noise: missing");
+		return pool_game_fail(error, BAD, "noise: missing");
 	if (pool_noise_preset(spec, noise) == POOL_OK)
 		return error ? (error->message[0] = '\0', POOL_OK) : POOL_OK;
 	pool_noise out = {0.0, 0.0, 0.0, 0.0, 0.0};
@@ -75,7 +67,7 @@ pool_result pool_noise_parse(const char *spec, pool_noise *noise, pool_error *er
 	bool seen[5] = {false, false, false, false, false};
 	const char *p = spec;
 	if (!*p)
-		return fail(error, "noise: empty (a preset: %s, or NAME=SD pairs such as phi=0.2,speed=0.05)",
+		return pool_game_fail(error, BAD, "noise: empty (a preset: %s, or NAME=SD pairs such as phi=0.2,speed=0.05)",
 		            pool_noise_preset_names());
 	for (;;) {
 		const char *end = strchr(p, ',');
@@ -84,25 +76,28 @@ pool_result pool_noise_parse(const char *spec, pool_noise *noise, pool_error *er
 		memcpy(item, p, n < sizeof item ? n : sizeof item - 1);
 		item[n < sizeof item ? n : sizeof item - 1] = '\0';
 		if (n == 0 || n >= sizeof item)
-			return fail(error, "noise: '%s' is not a preset (%s) or NAME=SD", printable(item), pool_noise_preset_names());
+			return pool_game_fail(error, BAD, "noise: '%s' is not a preset (%s) or NAME=SD", printable(item),
+			                      pool_noise_preset_names());
 		char *eq = strchr(item, '=');
 		if (!eq)
-			return fail(error, "noise: '%s' is not a preset (%s) or NAME=SD", printable(item), pool_noise_preset_names());
+			return pool_game_fail(error, BAD, "noise: '%s' is not a preset (%s) or NAME=SD", printable(item),
+			                      pool_noise_preset_names());
 		*eq = '\0';
 		int k = -1;
 		for (int j = 0; j < 5; ++j)
 			if (strcmp(item, names[j]) == 0)
 				k = j;
 		if (k < 0)
-			return fail(error, "noise: '%s': unknown parameter (speed, phi, theta, a, b)", printable(item));
+			return pool_game_fail(error, BAD, "noise: '%s': unknown parameter (speed, phi, theta, a, b)", printable(item));
 		if (seen[k])
-			return fail(error, "noise: %s is given twice", names[k]);
+			return pool_game_fail(error, BAD, "noise: %s is given twice", names[k]);
 		seen[k] = true;
 		char *stop = NULL;
 		errno = 0;
 		const double sd = strtod(eq + 1, &stop);
 		if (errno || stop == eq + 1 || *stop || !isfinite(sd) || sd < 0.0 || sd > 1e9)
-			return fail(error, "noise: %s: '%s' is not a standard deviation >= 0", names[k], printable(eq + 1));
+			return pool_game_fail(error, BAD, "noise: %s: '%s' is not a standard deviation >= 0", names[k],
+			                      printable(eq + 1));
 		double *field[5] = {&out.speed, &out.phi, &out.theta, &out.a, &out.b};
 		*field[k] = k == 1 || k == 2 ? sd * POOL_NOISE_DEG : sd;
 		if (!end)

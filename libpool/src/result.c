@@ -2,6 +2,7 @@
 #include "pool/base.h"
 #include "pool/ball.h"
 #include "pool/event.h"
+#include "pool/sim.h"
 
 #include <string.h>
 
@@ -64,4 +65,14 @@ const char *pool_pocket_name(pool_pocket pocket) {
 const char *pool_cushion_part_name(pool_cushion_part part) {
 	static const char *const names[] = {"nose", "facing", "jaw"};
 	return (int)part >= 0 && (int)part < 3 ? names[part] : NULL;
+}
+
+const char *pool_stop_reason_name(pool_stop_reason reason) {
+	switch (reason) {
+	case POOL_STOP_NONE: return "none";
+	case POOL_STOP_REST: return "rest";
+	case POOL_STOP_MAX_TIME: return "max_time";
+	case POOL_STOP_MAX_EVENTS: return "max_events";
+	}
+	return "unknown";
 }

@@ -61,7 +61,9 @@ OFFSET_MAX = 0.5                 # of R: tip offsets a miscue-free cue reaches
 def action_to_strike(action, radius):
     """The strike (speed m/s, phi deg, theta deg, a m, b m) of a scaled action in [-1, 1]^5
     (values outside are clipped)."""
-    x = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
+    x = [min(1.0, max(-1.0, float(v))) for v in action]
+    if len(x) != 5:
+        raise ValueError(f"action: 5 values (speed, phi, theta, a, b), not {len(x)}")
     return (SPEED_MIN + 0.5 * (x[0] + 1.0) * (SPEED_MAX - SPEED_MIN), 180.0 * x[1],
             0.5 * (x[2] + 1.0) * THETA_MAX, OFFSET_MAX * radius * x[3], OFFSET_MAX * radius * x[4])
 
@@ -144,6 +146,13 @@ class _PoolEnv(gymnasium.Env):
         return self._observation(), {"player": self.state.player}
 
     def step(self, action):
+        self._prepare(action)
+        self._shoot()
+        return self._finish()
+
+    # A step in three phases, so that PoolVectorEnv runs the middle one (the C shot, without the
+    # GIL) of every table at once on its threads, and the Python phases one table after another.
+    def _prepare(self, action):
         if self.state is None:
             raise RuntimeError("step() before reset()")
         strike = action_to_strike(action, self.radius)
@@ -153,21 +162,29 @@ class _PoolEnv(gymnasium.Env):
         cue = before.cue_ball
         if cue not in self.balls:
             self.balls[cue] = self._free_spot()
-        ids = sorted(self.balls)
-        balls, final = self._c_balls, self._c_final
-        for k, bid in enumerate(ids):
+        self._ids = sorted(self.balls)
+        balls = self._c_balls
+        for k, bid in enumerate(self._ids):
             x, y = self.balls[bid]
             balls[k] = CBallState(bid, 0, Vec3(x, y, self.radius), Vec3(), Vec3())
-        c_strike = make_strike(*strike)
-        c_state = before._to_c()
+        self._c_strike = make_strike(*strike)
+        self._c_state = before._to_c()
+        self._before = before
+
+    def _shoot(self):
         with self._sim.lock:
-            code = self._glib.pool_game_shoot(self._sim._p(), byref(self._def), balls, len(ids), byref(c_strike),
-                                              byref(c_state), byref(self._c_result), final, byref(self._c_error))
-        if code != 0:  # a strike the library refuses (noise can push a^2 + b^2 past R^2)
+            self._code = self._glib.pool_game_shoot(self._sim._p(), byref(self._def), self._c_balls,
+                                                    len(self._ids), byref(self._c_strike), byref(self._c_state),
+                                                    byref(self._c_result), self._c_final, byref(self._c_error))
+
+    def _finish(self):
+        before = self._before
+        if self._code != 0:  # a strike the library refuses (noise can push a^2 + b^2 past R^2)
             return self._refused(self._c_error.message.decode("utf-8", "replace"), before)
         result = game.Result._from_c(before.rules, self._c_result)
+        final = self._c_final
         self.shots += 1
-        self.balls = {final[k].id: (final[k].pos.x, final[k].pos.y) for k in range(len(ids))
+        self.balls = {final[k].id: (final[k].pos.x, final[k].pos.y) for k in range(len(self._ids))
                       if final[k].motion not in (_MOTION_POCKETED, _MOTION_OFF_TABLE)}
         for bid in result.spot:
             spot = game.spot_position(result.state, bid, list(self.balls.items()), self._def.table, self.radius)
@@ -200,13 +217,15 @@ class _PoolEnv(gymnasium.Env):
         return (0.25 * self.length, y)
 
     def _observation(self):
-        obs = np.zeros(self.observation_space.shape, np.float32)
-        for k, bid in enumerate(self._slot_ids()):
+        values = []
+        for bid in self._slot_ids():
             if bid in self.balls:
                 x, y = self.balls[bid]
-                obs[3 * k:3 * k + 3] = (x / self.length, y / self.width, 1.0)
-        obs[3 * len(self.slots):] = self._state_features()
-        return np.clip(obs, 0.0, 1.0)
+                values += (min(1.0, max(0.0, x / self.length)), min(1.0, max(0.0, y / self.width)), 1.0)
+            else:
+                values += (0.0, 0.0, 0.0)
+        values += self._state_features()
+        return np.array(values, dtype=np.float32)
 
     def _slot_ids(self):
         return self.slots
@@ -377,13 +396,18 @@ class PoolVectorEnv(VectorEnv):
     def step(self, actions):
         actions = np.asarray(actions)
 
-        def one(i, env):
+        # Python work one table after another; the shots (C, without the GIL) on the threads.
+        stepping = [i for i in range(self.num_envs) if not self._autoreset[i]]
+        for i in stepping:
+            self.envs[i]._prepare(actions[i])
+        self._map(lambda env: env._shoot(), [(self.envs[i],) for i in stepping])
+        out = []
+        for i, env in enumerate(self.envs):
             if self._autoreset[i]:
                 obs, info = env.reset()
-                return obs, 0.0, False, False, info
-            return env.step(actions[i])
-
-        out = self._map(one, list(enumerate(self.envs)))
+                out.append((obs, 0.0, False, False, info))
+            else:
+                out.append(env._finish())
         obs = np.stack([o[0] for o in out])
         rewards = np.array([o[1] for o in out], dtype=np.float64)
         terminations = np.array([o[2] for o in out], dtype=bool)

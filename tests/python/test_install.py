@@ -134,7 +134,7 @@ def main():
                      f"in-tree binding ({tree['library']})")
     n = len(tree["events"])
     print(f"test_install: OK: pip install {a.source} into a fresh venv; {bundled}; a break of "
-          f"{n} events and a 10-shot batch bit-identical to the in-tree binding "
+          f"{n} events, a 10-shot batch, the break judged by libpool.game and a noisy strike bit-identical to the in-tree binding "
           f"({tree['library']}); {time.monotonic() - start:.1f} s")
     return 0
 

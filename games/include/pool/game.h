@@ -39,10 +39,10 @@ typedef enum pool_game_foul {
 	POOL_FOUL_NO_CONTACT = 1 << 1,       ///< "no_contact": the cue ball hit no ball (WPA 6.2)
 	POOL_FOUL_WRONG_BALL_FIRST = 1 << 2, ///< "wrong_ball_first": not a legal ball first (WPA 6.2)
 	POOL_FOUL_NO_RAIL = 1 << 3,          ///< "no_rail": nothing pocketed, no ball to a rail after contact (WPA 6.3)
-	POOL_FOUL_BALL_OFF_TABLE = 1 << 4,   ///< "ball_off_table": an object ball left the table (WPA 6.5, UMB art. 28)
-	POOL_FOUL_ILLEGAL_BREAK = 1 << 5,    ///< "illegal_break": no ball pocketed and fewer than four to a rail (WPA 2.3, 3.3)
-	POOL_FOUL_WRONG_CUE_BALL = 1 << 6,   ///< "wrong_cue_ball": the cue struck another ball (WPA 6.6, UMB art. 41)
-	POOL_FOUL_BAD_PLACEMENT = 1 << 7,    ///< "bad_placement": cue ball in hand placed in front of the head string (WPA 6.10)
+	POOL_FOUL_BALL_OFF_TABLE = 1 << 4,   ///< "ball_off_table": an object ball left the table (WPA 6.5, UMB 28)
+	POOL_FOUL_ILLEGAL_BREAK = 1 << 5,    ///< "illegal_break": nothing pocketed, < 4 balls to rails (WPA 2.3, 3.3)
+	POOL_FOUL_WRONG_CUE_BALL = 1 << 6,   ///< "wrong_cue_ball": the cue struck another ball (WPA 6.6, UMB 41)
+	POOL_FOUL_BAD_PLACEMENT = 1 << 7,    ///< "bad_placement": ball in hand put in front of the head string (WPA 6.10)
 } pool_game_foul;
 
 /// How many foul kinds there are (bits 0 .. POOL_GAME_FOUL_KINDS - 1).
@@ -51,18 +51,18 @@ typedef enum pool_game_foul {
 /// Why the outcome is what it is, when the fouls do not say it all.
 typedef enum pool_game_reason {
 	POOL_REASON_NONE = 0,              ///< "none": the ordinary consequence of the shot
-	POOL_REASON_EIGHT_EARLY = 1,       ///< "eight_early": 8 pocketed before the shooter's group was cleared (WPA 3.8)
-	POOL_REASON_EIGHT_WRONG_POCKET = 2, ///< "eight_wrong_pocket": 8 pocketed in a pocket other than the called one (WPA 3.8)
+	POOL_REASON_EIGHT_EARLY = 1,       ///< "eight_early": 8 pocketed before the group was cleared (WPA 3.8)
+	POOL_REASON_EIGHT_WRONG_POCKET = 2, ///< "eight_wrong_pocket": 8 pocketed in another pocket than called (WPA 3.8)
 	POOL_REASON_EIGHT_ON_FOUL = 3,     ///< "eight_on_foul": 8 pocketed on a foul (WPA 3.8)
 	POOL_REASON_EIGHT_OFF_TABLE = 4,   ///< "eight_off_table": 8 driven off the table (WPA 3.8)
 	POOL_REASON_EIGHT_POCKETED = 5,    ///< "eight_pocketed": the 8 legally pocketed, the rack won (WPA 3.5)
 	POOL_REASON_NINE_POCKETED = 6,     ///< "nine_pocketed": the 9 legally pocketed, the rack won (WPA 2.5)
 	POOL_REASON_THREE_FOULS = 7,       ///< "three_fouls": a third consecutive foul (WPA 6.14, 2.8)
 	POOL_REASON_TARGET_REACHED = 8,    ///< "target_reached": three cushion, the shooter reached the target score
-	POOL_REASON_EIGHT_ON_BREAK = 9,    ///< "eight_on_break": the 8 pocketed or off the table on the break, spotted (WPA 3.3)
+	POOL_REASON_EIGHT_ON_BREAK = 9,    ///< "eight_on_break": the 8 down or off on the break, spotted (WPA 3.3)
 	POOL_REASON_PUSH_OUT = 10,         ///< "push_out": a push out, the opponent may play or pass it back (WPA 2.4)
 	POOL_REASON_SAFETY = 11,           ///< "safety": a declared safety, the turn passes (WPA 1.6)
-	POOL_REASON_NOT_CALLED = 12,       ///< "not_called": 8-ball, the called ball did not drop in the called pocket (WPA 3.5, 3.6)
+	POOL_REASON_NOT_CALLED = 12,       ///< "not_called": the called ball not in the called pocket (WPA 3.5, 3.6)
 } pool_game_reason;
 
 /// 8-ball groups, as the shooter's ("open" before they are chosen, WPA 3.4).
@@ -118,7 +118,7 @@ typedef struct pool_game_result {
 	int points;                    ///< what the shot scored (three cushion: 1 for a point)
 	int32_t first_hit;             ///< first ball the cue ball touched, or POOL_GAME_NO_BALL
 	int rails_after_contact;       ///< ball_cushion events (any ball) after the cue ball's first contact
-	int cue_cushions;              ///< the cue ball's cushion contacts before it met the second object ball (three cushion)
+	int cue_cushions;              ///< the cue ball's cushion contacts before it met the second ball (three cushion)
 	int pocketed_count;            ///< balls pocketed, in event order
 	int32_t pocketed[POOL_GAME_MAX_BALLS];     ///< their ids
 	pool_pocket pocketed_in[POOL_GAME_MAX_BALLS]; ///< and their pockets
