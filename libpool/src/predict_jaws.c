@@ -298,6 +298,8 @@ static double flight_line(const pool_table_shape *sh, const pool_nose_part *np, 
 	return t;
 }
 
+static double reach(const path *q, double T);
+
 // The centre crosses part k's vertical surface outwards (over the cushion) within its span.
 static double flight_over(const pool_nose_part *np, const path *q, double T) {
 	path w = relative(q, np->ax, np->ay, q->p.z);
@@ -307,6 +309,10 @@ static double flight_over(const pool_nose_part *np, const path *q, double T) {
 		g = line_gap(w.p.x * np->nx + w.p.y * np->ny, w.v.x * np->nx + w.v.y * np->ny, w.a.x * np->nx + w.a.y * np->ny, 0.0);
 	else
 		g = sphere_gap(&w, np->length);
+	// Farther from the surface than the path reaches over the window: no crossing.
+	const double away = np->kind == POOL_NOSE_LINE ? g.gap : sqrt(w.p.x * w.p.x + w.p.y * w.p.y) - np->length;
+	if (away > 0.0 && reach(q, T) * (1.0 + 1e-12) < away)
+		return INFINITY;
 	double t = T > 0.0 ? pool_contact_first_falling_root(g.f, 4, T) : INFINITY;
 	for (int i = 0; t <= T && i < JAWS_MAX_GHOSTS; ++i) {
 		if (in_span(np, path_at(q, t)))
