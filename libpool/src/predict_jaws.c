@@ -327,6 +327,19 @@ static double reach(const path *q, double T) {
 	return (sqrt(q->v.x * q->v.x + q->v.y * q->v.y) + sqrt(q->a.x * q->a.x + q->a.y * q->a.y) * T) * T;
 }
 
+// A bound below the horizontal distance from (x, y) to the path over [0, T]: in flight the path
+// is straight in plan (the segment from its start to where it is at T); a path that curves in
+// plan is bounded by its start less its reach.
+static double plan_distance(const path *q, double T, double x, double y) {
+	const double dx = x - q->p.x, dy = y - q->p.y;
+	if (q->a.x != 0.0 || q->a.y != 0.0 || !isfinite(T))
+		return sqrt(dx * dx + dy * dy) - (isfinite(T) ? reach(q, T) : INFINITY);
+	const double ex = q->v.x * T, ey = q->v.y * T, ee = ex * ex + ey * ey;
+	double u = ee > 0.0 ? (dx * ex + dy * ey) / ee : 0.0;
+	u = u < 0.0 ? 0.0 : u > 1.0 ? 1.0 : u;
+	return sqrt((dx - u * ex) * (dx - u * ex) + (dy - u * ey) * (dy - u * ey)) * (1.0 - 1e-12);
+}
+
 double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
                                 pool_event_type *kind, pool_site *site) {
 	const double R = sh->R, h = sh->table.cushion_height;
@@ -346,15 +359,16 @@ double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_stat
 	land.f[3] = land.f[4] = 0.0;
 	double best = pool_contact_next(&land, T);
 	const double T_reach = isfinite(best) ? fmin(best, T) : T;
-	const double span = isfinite(T_reach) ? reach(&q, T_reach) : INFINITY;
+	// The pockets the path passes within reach of (their parts widened by R and holes lie in
+	// their zone): the others' parts are not searched.
+	int near[6];
+	for (int p = 0; p < 6; ++p)
+		near[p] = sh->table.pockets == POOL_POCKETS_JAWS && sh->has_pocket[p] &&
+		          !(plan_distance(&q, T_reach, sh->pockets[p].mx, sh->pockets[p].my) > sh->pockets[p].zone);
 	for (int k = 0; k < sh->n_parts; ++k) {
 		const pool_nose_part *np = &sh->parts[k];
-		if (np->pocket != POOL_POCKET_NONE) {
-			const pool_pocket_shape *ps = &sh->pockets[np->pocket];
-			const double dx = s->pos.x - ps->mx, dy = s->pos.y - ps->my;
-			if (sqrt(dx * dx + dy * dy) > ps->zone + span)
-				continue;
-		}
+		if (np->pocket != POOL_POCKET_NONE && !near[np->pocket])
+			continue;
 		const double window = fmin(best, T);
 		const double t = np->kind == POOL_NOSE_LINE ? flight_line(sh, np, &q, window) : flight_jaw(np, &q, R, h, window);
 		found(t, &best, POOL_EVENT_BALL_CUSHION, np->rail, np->pocket, k, kind, site);
@@ -362,12 +376,9 @@ double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_stat
 		found(to, &best, POOL_EVENT_OFF_TABLE, np->rail, POOL_POCKET_NONE, -1, kind, site);
 	}
 	// Into a hole below the nose height (it drops), or out past its far side over the rail.
-	for (int p = 0; sh->table.pockets == POOL_POCKETS_JAWS && p < 6; ++p) {
+	for (int p = 0; p < 6; ++p) {
 		const pool_pocket_shape *ps = &sh->pockets[p];
-		if (!sh->has_pocket[p])
-			continue;
-		const double dx = s->pos.x - ps->mx, dy = s->pos.y - ps->my;
-		if (sqrt(dx * dx + dy * dy) > ps->zone + span)
+		if (!near[p])
 			continue;
 		double window = fmin(best, T);
 		const double t = enter_circle(&q, ps->hx, ps->hy, ps->hole_radius, window);
