@@ -158,8 +158,9 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 		const double window = fmin(T, best);
 		if (g.gap > POOL_TOUCH_TOLERANCE && (fabs(g.f[1]) + fabs(g.f[2]) * window) * window * (1.0 + 1e-12) < g.gap)
 			continue;
-		pool_pocket pocket;
-		const int start = pool_shape_span(sh, rail, along_x ? s->pos.x : s->pos.y, &pocket);
+		pool_pocket pocket = POOL_POCKET_NONE;
+		// Beyond the line: in a pocket's mouth (or, within a nose's span, inside its cushion).
+		const int start = g.gap < -POOL_TOUCH_TOLERANCE ? pool_shape_span(sh, rail, along_x ? s->pos.x : s->pos.y, &pocket) : 0;
 		double t;
 		if (g.gap < -POOL_TOUCH_TOLERANCE && start < 0 && pocket != POOL_POCKET_NONE) {
 			involved[pocket] = 1; // in that pocket's mouth
