@@ -210,8 +210,9 @@ static void test_families(void **state) {
 			       "worst inside %.3g m, overlap %.3g m, energy %.3g J\n",
 			       presets[p], airborne ? " airborne" : "", st.shots, st.events, st.max_events, st.pocketed, st.jaw_hits,
 			       st.facing_hits, st.worst_inside, st.worst_overlap, st.worst_energy);
+			// The shots reach the pockets' parts (and, on the cloth, the holes): the checks saw them.
 			if (p < 2)
-				assert_true(st.pocketed > 0 && st.jaw_hits + st.facing_hits > 0);
+				assert_true(st.jaw_hits + st.facing_hits > 0 && (airborne || st.pocketed > 0));
 		}
 }
 
