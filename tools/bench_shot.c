@@ -115,11 +115,11 @@ static double urand(void) {
 }
 
 int main(int argc, char **argv) {
-	int runs = 2000;
+	int runs = 2000, pockets = POOL_POCKETS_JAWS;
 	const char *models = "default";
 	for (int i = 1; i < argc; ++i) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-			printf("usage: pool-bench-shot [--runs N] [--models default|thesis]\n"
+			printf("usage: pool-bench-shot [--runs N] [--models default|thesis] [--pockets jaws|mouth_lines]\n"
 			       "Times whole shots with libpool, reusing one pool_sim (pool_sim_reset):\n"
 			       "  break-frozen      15-ball rack, gap 0, centre-ball break at 8 m/s\n"
 			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
@@ -133,10 +133,17 @@ int main(int argc, char **argv) {
 			       "and LINK steps per shot, events per second, the library's peak heap bytes and allocation count before and after the\n"
 			       "runs (they must not grow), the process's peak resident memory, and the machine.\n"
 			       "--models: the model set of every shot (default: the library's defaults, the\n"
-			       "measured laws; thesis: the 2012 work's).\n");
+			       "measured laws; thesis: the 2012 work's).\n"
+			       "--pockets: the table's pocket model (default jaws; mouth_lines: the thesis model).\n");
 			return 0;
 		}
-		if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
+		if (strcmp(argv[i], "--pockets") == 0 && i + 1 < argc) {
+			pockets = pool_pockets_model_from_name(argv[++i]);
+			if (pockets < 0) {
+				fprintf(stderr, "pool-bench-shot: --pockets: jaws, mouth_lines or none\n");
+				return 2;
+			}
+		} else if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
 			runs = atoi(argv[++i]);
 			if (runs <= 0) {
 				fprintf(stderr, "pool-bench-shot: --runs: must be > 0\n");
@@ -158,6 +165,8 @@ int main(int argc, char **argv) {
 	printf("models: %s\n", models);
 	pool_sim_def def = pool_default_sim_def();
 	pool_models_preset(models, &def.models);
+	def.table.pockets = (pool_pockets_model)pockets;
+	printf("pockets: %s\n", pool_pockets_model_name(def.table.pockets));
 	def.allocator = (pool_allocator){counting_alloc, counting_free, NULL};
 	pool_sim *sim;
 	pool_error err;

@@ -150,6 +150,20 @@ double pool_contact_first_falling_root(const double *p, int deg, double T) {
 	return lost_crossing(p, deg, T);
 }
 
+double pool_contact_first_falling_root_from(const double *p, int deg, double lo, double T) {
+	if (!(lo <= T))
+		return INFINITY;
+	// q(u) = p(lo + u): a Taylor shift, then the window [0, T - lo].
+	double q[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+	for (int k = 0; k <= deg; ++k)
+		q[k] = p[k];
+	for (int i = 0; i < deg; ++i)
+		for (int k = deg - 1; k >= i; --k)
+			q[k] += lo * q[k + 1];
+	const double u = pool_contact_first_falling_root(q, deg, T - lo);
+	return u < INFINITY ? lo + u : INFINITY;
+}
+
 double pool_contact_next(const pool_contact_gap *g, double T) {
 	if (!(T >= 0.0))
 		return INFINITY;

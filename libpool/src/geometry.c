@@ -3,6 +3,7 @@
 
 #include <math.h>
 
+#include "table_shape.h"
 #include "vec3.h"
 
 double pool_table_contact_distance(const pool_table_def *table, double ball_radius) {
@@ -15,6 +16,8 @@ double pool_table_contact_distance(const pool_table_def *table, double ball_radi
 pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along) {
 	const double L = table->length, W = table->width;
 	const double corner = table->corner_mouth / sqrt(2.0);
+	if (table->pockets == POOL_POCKETS_NONE)
+		return POOL_POCKET_NONE;
 	switch (rail) {
 	case POOL_RAIL_SOUTH:
 	case POOL_RAIL_NORTH: {
@@ -127,6 +130,9 @@ pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_r
 }
 
 pool_pocket pool_table_pocket_past(const pool_table_def *table, double contact_distance, pool_vec3 pos) {
+	// Pockets "jaws": over a hole (the slate ends there), wherever the contact lines are.
+	if (table->pockets == POOL_POCKETS_JAWS)
+		return pool_table_hole_at(table, pos.x, pos.y);
 	for (int r = POOL_RAIL_SOUTH; r <= POOL_RAIL_EAST; ++r) {
 		const pool_rail rail = (pool_rail)r;
 		const int along_x = pool_rail_along_x(rail);

@@ -83,6 +83,7 @@ pool_result pool_history_record(pool_history *h, const pool_allocator *a, double
 	e->type = type;
 	e->rail = rail;
 	e->pocket = pocket;
+	e->part = POOL_PART_NONE; // the world names the part of a cushion event (pockets "jaws", "none")
 	e->ball_count = m;
 	e->first_state = h->n_states;
 	for (int k = 0; k < m; ++k)

@@ -62,6 +62,11 @@ const char *pool_pocket_name(pool_pocket pocket) {
 	return (int)pocket >= 0 && (int)pocket < 6 ? names[pocket] : NULL;
 }
 
+const char *pool_cushion_part_name(pool_cushion_part part) {
+	static const char *const names[] = {"nose", "facing", "jaw"};
+	return (int)part >= 0 && (int)part < 3 ? names[part] : NULL;
+}
+
 const char *pool_stop_reason_name(pool_stop_reason reason) {
 	switch (reason) {
 	case POOL_STOP_NONE: return "none";

@@ -60,52 +60,69 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	b->own_kind = POOL_EVENT_SPIN_STOP;
 	b->own_rail = POOL_RAIL_NONE;
 	b->own_pocket = POOL_POCKET_NONE;
+	b->own_part = -1;
 	if (!b->active)
 		return;
+	const pool_table_shape *shape = &sim->shape;
+	pool_event_type kind;
+	pool_site site;
 	if (s->motion == POOL_MOTION_LINKED) {
-		// The cluster's step, or leaving play first (linked_exit).
+		// The cluster's step, or leaving play first: the step's LCP holds a linked ball off the
+		// cushions, but not over a hole (pockets "jaws") or past a mouth's contact line and off the
+		// table's edge (the thesis model's lines: linked_exit).
 		b->own_time = pool_link_next_step(&sim->link, i);
 		b->own_kind = POOL_EVENT_LINK_STEP;
 		const double window = fmin(b->own_time, sim->def.max_time) - t;
 		if (!(window > 0.0))
 			return;
-		pool_event_type kind = POOL_EVENT_POCKET;
-		pool_rail rail = POOL_RAIL_NONE;
-		pool_pocket pocket = POOL_POCKET_NONE;
-		const double tc = linked_exit(sim, s, window, &kind, &rail, &pocket);
-		if (tc < window) {
+		if (shape->table.pockets == POOL_POCKETS_MOUTH_LINES) {
+			kind = POOL_EVENT_POCKET;
+			site.rail = POOL_RAIL_NONE;
+			site.pocket = POOL_POCKET_NONE;
+			const double tc = linked_exit(sim, s, window, &kind, &site.rail, &site.pocket);
+			if (tc < window) {
+				b->own_time = t + tc;
+				b->own_kind = kind;
+				b->own_rail = site.rail;
+				b->own_pocket = site.pocket;
+			}
+			return;
+		}
+		const double tc = pool_predict_cushion_shape(shape, s, b->seg.acc, window, &kind, &site);
+		if (tc < window && kind == POOL_EVENT_POCKET) {
 			b->own_time = t + tc;
-			b->own_kind = kind;
-			b->own_rail = rail;
-			b->own_pocket = pocket;
+			b->own_kind = POOL_EVENT_POCKET;
+			b->own_rail = site.rail;
+			b->own_pocket = site.pocket;
 		}
 		return;
 	}
 	if (s->motion == POOL_MOTION_AIRBORNE) {
 		// In flight: landing, a nose, a pocket or the table's edge; nothing changes by itself.
 		const double window = fmax(sim->def.max_time - t, 0.0);
-		const double dt = pool_predict_flight(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &b->own_kind,
-		                                      &b->own_rail, &b->own_pocket);
+		const double dt = pool_predict_flight_shape(shape, s, b->seg.acc, window, &b->own_kind, &site);
 		// Gravity ends every flight (params.g > 0), so nothing within the window means the
 		// flight's next event lies after max_time, not that none comes: the shot then stops at
 		// max_time (POOL_STOP_MAX_TIME), never "at rest" with a ball in the air.
 		b->own_time = isfinite(dt) ? t + dt : pool_schedule_beyond(sim);
+		b->own_rail = site.rail;
+		b->own_pocket = site.pocket;
+		b->own_part = site.part;
 		return;
 	}
 	if (!b->seg.model->on_cloth)
 		return;
-	pool_event_type kind;
 	double dt = pool_segment_next_change(&b->seg, &kind);
 	if (b->seg.model->translating) {
-		pool_rail rail;
-		pool_pocket pocket;
-		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, dt, &rail, &pocket);
+		pool_event_type contact;
+		const double tc = pool_predict_cushion_shape(shape, s, b->seg.acc, dt, &contact, &site);
 		// A state change at the same instant goes first (its kind orders first).
 		if (tc < dt) {
 			dt = tc;
-			kind = pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
-			b->own_rail = rail;
-			b->own_pocket = pocket;
+			kind = contact;
+			b->own_rail = site.rail;
+			b->own_pocket = site.pocket;
+			b->own_part = site.part;
 		}
 	}
 	b->own_time = t + dt;

@@ -93,6 +93,11 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "allocator: alloc and free must both be set");
 	if ((r = pool_models_validate(&def->models, error)))
 		return r;
+	// The nose curve can be built for this ball (jaws tangent within their parts, facings that
+	// reach the holes, mouths and throats wider than the ball).
+	pool_table_shape shape;
+	if ((r = pool_table_shape_build(&def->table, R, &shape, error)))
+		return r;
 	return pool_error_ok(error);
 }
 
@@ -162,6 +167,8 @@ static void set_def(pool_sim *sim, const pool_sim_def *def) {
 	sim->def.allocator = keep; // buffers stay with the allocator that made them
 	sim->dc = pool_table_contact_distance(&def->table, def->params.ball_radius);
 	bind_link(sim);
+	(void)pool_table_shape_build(&def->table, def->params.ball_radius, &sim->shape, NULL); // validated
+	sim->link.ws.shape = &sim->shape; // LINK's cushion contacts are the nose curve's parts
 }
 
 pool_result pool_sim_create(const pool_sim_def *def, pool_sim **out, pool_error *error) {
@@ -280,7 +287,10 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		                      idx, R);
 	}
 	const double x = ball->pos.x, y = ball->pos.y;
-	if (x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol)
+	// On the cloth inside the contact lines; with pockets "jaws" also in a mouth or on a shelf,
+	// clear of the facings and jaws and not over a hole (where a ball can come to rest).
+	if ((x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol) &&
+	    !(sim->def.table.pockets == POOL_POCKETS_JAWS && pool_shape_on_cloth(&sim->shape, x, y, tol)))
 		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
 	// Above the cloth a ball inside its contact lines can still be inside a cushion's nose (on the
 	// cloth the lines are exactly where it touches one).
@@ -385,11 +395,15 @@ static pool_result process(pool_sim *sim, int slot) {
 		sim->processed = now;
 		return r;
 	}
-	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE};
+	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE, &sim->shape, -1};
 	if (type == POOL_EVENT_BALL_CUSHION || type == POOL_EVENT_POCKET)
 		ctx.rail = b->own_rail;
 	if (type == POOL_EVENT_POCKET)
 		ctx.pocket = b->own_pocket;
+	if (type == POOL_EVENT_BALL_CUSHION && b->own_part >= 0) {
+		ctx.part = b->own_part;
+		ctx.pocket = b->own_pocket; // the pocket of a facing or jaw
+	}
 	int inv[2] = {slot, -1}, count = 1;
 	if (type == POOL_EVENT_BALL_BALL) {
 		// Body 1 is the ball with the smaller id, so the event reads the same from both slots.
@@ -452,6 +466,8 @@ static pool_result process(pool_sim *sim, int slot) {
 		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
 	// A pocket event names its pocket, not the rail whose mouth it was.
 	record(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
+	if (type == POOL_EVENT_BALL_CUSHION && sim->history.n_events > 0 && ctx.part >= 0)
+		sim->history.events[sim->history.n_events - 1].part = sim->shape.parts[ctx.part].part;
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);

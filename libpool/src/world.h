@@ -18,6 +18,7 @@
 #include "link.h"
 #include "pool/sim.h"
 #include "segment.h"
+#include "table_shape.h"
 
 /// A ball's runtime record: its current segment and its own next event.
 typedef struct pool_body {
@@ -26,7 +27,8 @@ typedef struct pool_body {
 	double own_time;          ///< s, next own event (state change, cushion, pocket); absolute
 	pool_event_type own_kind; ///< its kind
 	pool_rail own_rail;       ///< for a cushion or pocket event
-	pool_pocket own_pocket;   ///< for a pocket event
+	pool_pocket own_pocket;   ///< for a pocket event; for a cushion event, the pocket of its facing or jaw
+	int own_part;             ///< for a cushion event with pockets "jaws": the part of the nose curve
 	int partner;              ///< other body of the pending event in the queue slot, or -1
 	int changed;              ///< scratch of pool_schedule_after_event: among the changed bodies
 } pool_body;
@@ -35,6 +37,7 @@ struct pool_sim {
 	pool_sim_def def;
 	pool_allocator alloc;
 	double dc; // m, horizontal centre distance from a nose line at contact
+	pool_table_shape shape; // the table's nose curve for this ball radius (table_shape.h)
 
 	int n, cap_balls;
 	pool_ball_state *cur; // segment start states (pool_sim_balls)

@@ -30,7 +30,7 @@ from ._ffi import Models, SimDef, Strike, TableDef, Vec3, library_path
 
 __all__ = [
     "PoolError", "Ball", "EventRecord", "Sim", "TableDef", "Params", "Strike", "SimDef", "Vec3",
-    "Allocator", "table_preset", "default_table", "default_params", "default_sim_def",
+    "Allocator", "table_preset", "params_preset", "default_table", "default_params", "default_sim_def",
     "validate_table", "validate_params", "strike_velocities", "rack", "break_strike",
     "quartic_real_roots", "quartic_smallest_root_in", "library_path", "RESULT_NAMES",
     "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict", "model_sets",
@@ -55,7 +55,7 @@ EVENT_TYPES = ("strike", "slide_roll", "roll_stop", "spin_stop", "ball_ball", "b
                "ball_table", "pocket", "off_table", "link_begin", "link_step", "link_end")
 STOP_REASONS = ("none", "rest", "max_time", "max_events")
 _STOP_NAMES = {0: None, 1: "rest", 2: "max_time", 3: "max_events"}
-_RACKS = {"8ball": 0, "9ball": 1}
+_RACKS = {"8ball": 0, "9ball": 1, "snooker": 2, "carom": 3}
 _MOTION_POCKETED = 6
 # Records are plain slotted dataclasses: frozen ones cost about twice as much to build, and a
 # break builds a few hundred of them.
@@ -169,13 +169,15 @@ class Ball:
 @dataclass(**_DATACLASS_OPTS)
 class EventRecord:
     """One processed event: time (s), type name ("ball_ball", ...), ids of the balls involved,
-    rail and pocket names (None when not applicable), and the balls' states just after it."""
+    rail and pocket names (None when not applicable), the balls' states just after it, and the
+    part of the cushion a ball_cushion event touched ("nose", "facing", "jaw"; None otherwise)."""
     time: float
     type: str
     balls: Tuple[int, ...]
     rail: Optional[str]
     pocket: Optional[str]
     after: Tuple[Ball, ...]
+    part: Optional[str] = None
 
 
 _name_cache = {}
@@ -200,7 +202,7 @@ def _motion_name(m):
 # Raw layouts for bulk reads (one string_at + iter_unpack instead of a ctypes attribute access
 # per number); checked against the ctypes mirrors at import, which the tests check against C.
 _BALL_FMT = struct.Struct("=ii9d")
-_EVENT_FMT = struct.Struct("=d5i4x")
+_EVENT_FMT = struct.Struct("=d6i")  # time, type, rail, pocket, ball_count, first_state, part
 assert _BALL_FMT.size == sizeof(CBallState) and _EVENT_FMT.size == sizeof(CEvent)
 
 
@@ -223,9 +225,19 @@ def default_table():
 
 
 def table_preset(name):
-    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft". A name holding a NUL
-    character raises ValueError (TypeError if not a str); an unknown one, PoolError."""
+    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft", "snooker", "carom". A name
+    holding a NUL character raises ValueError (TypeError if not a str); an unknown one, PoolError.
+    Snooker and carom are played with their own balls and cloth: params_preset."""
     return _table_preset(name, "table_preset: name")
+
+
+def params_preset(name):
+    """The Params a table preset is played with (its balls and cloth; pool_params_preset)."""
+    p = Params()
+    code = _lib().pool_params_preset(_c_string(name, "params_preset: name"), byref(p))
+    if code < 0:
+        raise PoolError(code, f"table.preset: unknown preset '{name}'")
+    return p
 
 
 def _table_preset(name, arg):
@@ -313,12 +325,13 @@ def _rack_c(kind, gap, table, params):
     if not isinstance(kind, str):
         raise TypeError(f"rack: kind: expected a str, got {_type_name(kind)}")
     if kind not in _RACKS:
-        raise PoolError(_ERR_INVALID_ARGUMENT, f"rack: unknown kind '{kind}' (8ball or 9ball)")
+        raise PoolError(_ERR_INVALID_ARGUMENT,
+                        f"rack: unknown kind '{kind}' (8ball, 9ball, snooker or carom)")
     t = table if table is not None else default_table()
     p = params if params is not None else default_params()
-    out = (CBallState * 16)()
+    out = (CBallState * 32)()
     n = _check(_lib().pool_rack(_RACKS[kind], byref(t), byref(p), _finite(gap, "rack.gap"), out,
-                                16))
+                                32))
     return out[:n]
 
 
@@ -473,6 +486,7 @@ def _sim_def(table, params, max_time, max_events, airborne, models=None):
     if table is not None:
         if isinstance(table, str):
             d.table = _table_preset(table, "table")
+            d.params = params_preset(table)  # a preset's own balls and cloth
         elif isinstance(table, TableDef):
             d.table = table
         else:
@@ -622,6 +636,7 @@ class Sim:
         with self._lock:
             p = self._p()
             err = CError()
+            self._rack_states = None
             if table is None and params is None and max_time is None and max_events is None \
                     and airborne is None and models is None:
                 _check(_lib().pool_sim_reset(p, None, byref(err)), err)
@@ -663,11 +678,12 @@ class Sim:
                 self.add_ball(b.id, b.pos, b.vel, b.omega)
 
     def rack(self, kind, gap=0.0):
-        """Adds a standard rack ("8ball" or "9ball", cue ball id 0 on the head spot) for this
+        """Adds a standard rack ("8ball", "9ball", "snooker" or "carom"; cue ball id 0) for this
         sim's table and ball radius; returns the balls added."""
         with self._lock:
             states = _rack_c(kind, gap, self._def.table, self._def.params)
             self._add_c(states)
+            self._rack_states = (CBallState * len(states))(*states)
         return [Ball._from_c(s) for s in states]
 
     def strike(self, ball_id, speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0):
@@ -683,8 +699,13 @@ class Sim:
             _check(_lib().pool_sim_strike(self._p(), ball, byref(strike), byref(err)), err)
 
     def break_strike(self, speed, ball_id=0):
-        """The centre-ball break (pool_break_strike) on the cue ball."""
-        self.strike_c(ball_id, break_strike(speed))
+        """The centre-ball break on the cue ball: aimed at the first object ball of the last
+        rack() (pool_rack_break_strike), else straight along +x (pool_break_strike)."""
+        racked = getattr(self, "_rack_states", None)
+        if racked is not None:
+            self.strike_c(ball_id, _lib().pool_rack_break_strike(racked, len(racked), float(speed)))
+        else:
+            self.strike_c(ball_id, break_strike(speed))
 
     # running
     def step(self):
@@ -790,12 +811,13 @@ class Sim:
             afters = [tuple(states[e[5]:e[5] + e[4]]) for e in events]
         else:
             afters = [tuple(_unpack_balls(raw)) for raw in apart]
-        ev_name, rail_name, pocket_name = (_name_table("pool_event_type_name"),
-                                           _name_table("pool_rail_name"),
-                                           _name_table("pool_pocket_name"))
+        ev_name, rail_name, pocket_name, part_name = (_name_table("pool_event_type_name"),
+                                                      _name_table("pool_rail_name"),
+                                                      _name_table("pool_pocket_name"),
+                                                      _name_table("pool_cushion_part_name"))
         return [EventRecord(t, ev_name(ty), tuple(b.id for b in after), rail_name(r),
-                            pocket_name(pk), after)
-                for (t, ty, r, pk, _, _), after in zip(events, afters)]
+                            pocket_name(pk), after, part_name(pt))
+                for (t, ty, r, pk, _, _, pt), after in zip(events, afters)]
 
     def state_at(self, t):
         """Every ball at time t (exact, closed form between events), by insertion order; t must

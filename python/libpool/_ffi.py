@@ -45,9 +45,14 @@ class Vec3(_Struct):
 
 
 class TableDef(_Struct):
-    """pool_table_def: table geometry in metres."""
+    """pool_table_def: table geometry in metres, cut angles in RADIANS, pockets a
+    pool_pockets_model value (0 mouth_lines, 1 jaws, 2 none)."""
     _fields_ = [("length", c_double), ("width", c_double), ("cushion_height", c_double),
-                ("corner_mouth", c_double), ("side_mouth", c_double)]
+                ("corner_mouth", c_double), ("side_mouth", c_double), ("pockets", c_int),
+                ("corner_cut_angle", c_double), ("side_cut_angle", c_double),
+                ("corner_jaw_radius", c_double), ("side_jaw_radius", c_double),
+                ("corner_shelf", c_double), ("side_shelf", c_double),
+                ("corner_hole_radius", c_double), ("side_hole_radius", c_double)]
 
 
 class Params(_Struct):
@@ -71,9 +76,9 @@ class Strike(_Struct):
 
 
 class Event(_Struct):
-    """pool_event: time, type, rail, pocket, ball_count, first_state."""
+    """pool_event: time, type, rail, pocket, ball_count, first_state, part (pool_cushion_part)."""
     _fields_ = [("time", c_double), ("type", c_int), ("rail", c_int), ("pocket", c_int),
-                ("ball_count", c_int), ("first_state", c_int)]
+                ("ball_count", c_int), ("first_state", c_int), ("part", c_int)]
 
 
 class Allocator(_Struct):
@@ -117,6 +122,10 @@ _PROTOTYPES = {
     "pool_event_type_name": (c_char_p, [c_int]),
     "pool_rail_name": (c_char_p, [c_int]),
     "pool_pocket_name": (c_char_p, [c_int]),
+    "pool_cushion_part_name": (c_char_p, [c_int]),
+    "pool_pockets_model_name": (c_char_p, [c_int]),
+    "pool_pockets_model_from_name": (c_int, [c_char_p]),
+    "pool_params_preset": (c_int, [c_char_p, POINTER(Params)]),
     "pool_quartic_real_roots": (c_int, [POINTER(c_double), POINTER(c_double)]),
     "pool_quartic_smallest_root_in": (c_int, [POINTER(c_double), c_double, c_double,
                                               POINTER(c_double)]),
@@ -130,6 +139,7 @@ _PROTOTYPES = {
     "pool_rack": (c_int, [c_int, POINTER(TableDef), POINTER(Params), c_double,
                           POINTER(BallState), c_int]),
     "pool_break_strike": (Strike, [c_double]),
+    "pool_rack_break_strike": (Strike, [POINTER(BallState), c_int, c_double]),
     "pool_default_sim_def": (SimDef, []),
     "pool_cushion_model_name": (c_char_p, [c_int]),
     "pool_ball_friction_model_name": (c_char_p, [c_int]),

@@ -181,6 +181,12 @@ def layout_text(layout):
                     f"{type(layout).__name__}")
 
 
+# The table's numeric fields of a scenario (docs/interfaces.md): cut angles in degrees.
+_TABLE_NUMBERS = ("length", "width", "cushion_height", "corner_mouth", "side_mouth",
+                  "corner_cut_angle", "side_cut_angle", "corner_jaw_radius", "side_jaw_radius",
+                  "corner_shelf", "side_shelf", "corner_hole_radius", "side_hole_radius")
+
+
 def load_layout(layout):
     """A Layout from a path (str or os.PathLike), JSON text (a str whose first non-blank character
     is "{") or an already parsed dict, by the rules of pool-sim's scenario parser (the same
@@ -210,29 +216,38 @@ def _parse_document(doc):
             _fail(f"{k}: must be a string")
     d = lib.pool_default_sim_def()
     err = CError()
-    # table
+    # table (a preset's balls and cloth become the params' defaults, as in pool-sim)
     t = doc.get("table")
+    preset = None
+    presets = "wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom"
     if isinstance(t, str):  # "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}
         if "\0" in t or lib.pool_table_preset(t.encode(), byref(d.table)) != 0:
-            _fail(f'table: unknown preset "{t}" (wpa-9ft, wpa-8ft, wpa-7ft)')
-        t = None
+            _fail(f'table: unknown preset "{t}" ({presets})')
+        preset, t = t, None
     if t is not None:
         if not isinstance(t, dict):
             _fail("table: must be a preset name or an object")
-        _fields(t, "table", ("preset", "length", "width", "cushion_height", "corner_mouth",
-                             "side_mouth"))
+        _fields(t, "table", ("preset",) + _TABLE_NUMBERS + ("pockets",))
         if "preset" in t:
             if not isinstance(t["preset"], str):
                 _fail("table.preset: must be a string")
             if "\0" in t["preset"] or lib.pool_table_preset(t["preset"].encode(),
                                                              byref(d.table)) != 0:
-                _fail(f'table.preset: unknown preset "{t["preset"]}" (wpa-9ft, wpa-8ft, wpa-7ft)')
-        for k in ("length", "width", "cushion_height", "corner_mouth", "side_mouth"):
+                _fail(f'table.preset: unknown preset "{t["preset"]}" ({presets})')
+            preset = t["preset"]
+        if "pockets" in t:
+            if t["pockets"] not in ("mouth_lines", "jaws", "none"):
+                _fail('table.pockets: must be "jaws", "mouth_lines" or "none"')
+            d.table.pockets = ("mouth_lines", "jaws", "none").index(t["pockets"])
+        for k in _TABLE_NUMBERS:
             if k in t:
-                setattr(d.table, k, _number(t[k], f"table.{k}"))
+                v = _number(t[k], f"table.{k}")
+                setattr(d.table, k, v * (math.pi / 180.0) if k.endswith("cut_angle") else v)
         r = lib.pool_table_def_validate(byref(d.table), byref(err))
         if r != 0:
             _fail(_lib_message("table", r, err))
+    if preset is not None:
+        lib.pool_params_preset(preset.encode(), byref(d.params))
     # params
     p = doc.get("params")
     if p is not None:

@@ -24,10 +24,25 @@ def _state(b):
             "state": b.motion}
 
 
+_POCKETS_MODELS = ("mouth_lines", "jaws", "none")
+# The geometry of pockets "jaws" as results and scenarios write it (cut angles in degrees).
+_JAW_FIELDS = ("corner_cut_angle", "side_cut_angle", "corner_jaw_radius", "side_jaw_radius",
+               "corner_shelf", "side_shelf", "corner_hole_radius", "side_hole_radius")
+
+
+def _table(t):
+    table = {k: getattr(t, k) for k in _TABLE_FIELDS}
+    table["pockets"] = _POCKETS_MODELS[t.pockets] if 0 <= t.pockets < 3 else "unknown"
+    if t.pockets == 1:
+        for k in _JAW_FIELDS:
+            v = getattr(t, k)
+            table[k] = v * 180.0 / math.pi if k.endswith("cut_angle") else v
+    return table
+
+
 def _definition(sim):
     d = sim.definition
-    return d, {k: getattr(d.table, k) for k in _TABLE_FIELDS}, \
-        {k: getattr(d.params, k) for k in _PARAM_FIELDS}
+    return d, _table(d.table), {k: getattr(d.params, k) for k in _PARAM_FIELDS}
 
 
 def _models(d):
@@ -133,6 +148,8 @@ def result(sim, sample_dt=None):
             ev = {"t": e.time, "type": e.type, "balls": list(e.balls)}
             if e.rail is not None:
                 ev["rail"] = e.rail
+            if e.part is not None:
+                ev["part"] = e.part
             if e.pocket is not None:
                 ev["pocket"] = e.pocket
             ev["after"] = [_state(b) for b in e.after]

@@ -870,6 +870,9 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	// classes) nor the generator's stream depends on it.
 	if (((uint64_t)index * 0x9E3779B97F4A7C15ull) >> 62 == 3)
 		s->def.models = pool_thesis_models();
+	// The thesis model's pockets: these checks (contact lines, mouths on the rail lines) are its
+	// geometry; pockets "jaws" has its own invariants (tests/unit/test_jaws_shots.c).
+	s->def.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	s->def.max_events = HS_MAX_EVENTS;
 	s->def.max_time = HS_MAX_TIME;
 	switch (cls) {
@@ -902,7 +905,7 @@ static inline void hs_print_scenario(FILE *f, const hs_shot *s) {
 	const pool_params *p = &s->def.params;
 	fprintf(f, "{\"format\": \"libpool-scenario/1\",\n");
 	fprintf(f, " \"table\": {\"length\": %.17g, \"width\": %.17g, \"cushion_height\": %.17g, \"corner_mouth\": %.17g, "
-	           "\"side_mouth\": %.17g},\n",
+	           "\"side_mouth\": %.17g, \"pockets\": \"mouth_lines\"},\n",
 	        t->length, t->width, t->cushion_height, t->corner_mouth, t->side_mouth);
 	fprintf(f, " \"params\": {\"g\": %.17g, \"mu_slide\": %.17g, \"mu_roll\": %.17g, \"mu_spin\": %.17g, \"mu_ball\": %.17g, "
 	           "\"e_ball\": %.17g, \"mu_cushion\": %.17g, \"e_cushion\": %.17g, \"mu_table\": %.17g, \"e_table\": %.17g, "

@@ -21,6 +21,7 @@
 #include "collision.h"
 #include "motion.h"
 #include "pool/pool.h"
+#include "table_shape.h"
 #include "vec3.h"
 
 #ifndef M_PI
@@ -53,6 +54,25 @@ static pool_ball_state ball_at(int32_t id, double x, double y, double R) {
 	return b;
 }
 
+// How far (m) a ball centred at pos is inside the nose curve of pockets "jaws": R less its
+// distance to the nearest part (a ball on the cloth touches at horizontal distance dc, at 3D
+// distance R). In a mouth or on a shelf, past the rails' contact lines, a ball is on the table.
+static double inside_cushion(const pool_sim_def *def, pool_vec3 pos) {
+	pool_table_shape shape;
+	assert_int_equal(pool_table_shape_build(&def->table, def->params.ball_radius, &shape, NULL), POOL_OK);
+	return def->params.ball_radius - pool_shape_distance(&shape, pos, NULL);
+}
+
+// How far (m) a pocketed ball was from its hole when it fell (<= 0: over it).
+static double outside_hole(const pool_sim_def *def, pool_vec3 pos) {
+	pool_table_shape shape;
+	assert_int_equal(pool_table_shape_build(&def->table, def->params.ball_radius, &shape, NULL), POOL_OK);
+	double worst = INFINITY;
+	for (int p = 0; p < 6; ++p)
+		worst = fmin(worst, hypot(pos.x - shape.pockets[p].hx, pos.y - shape.pockets[p].hy) - shape.pockets[p].hole_radius);
+	return worst;
+}
+
 static void sample(const pool_sim *sim, const pool_sim_def *def, double t, leak_report *r) {
 	pool_ball_state s[MAX_BALLS];
 	const int n = pool_sim_ball_count(sim);
@@ -62,7 +82,9 @@ static void sample(const pool_sim *sim, const pool_sim_def *def, double t, leak_
 	for (int i = 0; i < n; ++i) {
 		if (s[i].motion == POOL_MOTION_POCKETED)
 			continue;
-		const double out = fmax(fmax(dc - s[i].pos.x, s[i].pos.x - (L - dc)), fmax(dc - s[i].pos.y, s[i].pos.y - (W - dc)));
+		const double out = def->table.pockets == POOL_POCKETS_JAWS
+		                       ? inside_cushion(def, s[i].pos)
+		                       : fmax(fmax(dc - s[i].pos.x, s[i].pos.x - (L - dc)), fmax(dc - s[i].pos.y, s[i].pos.y - (W - dc)));
 		r->outside = fmax(r->outside, out);
 		for (int j = i + 1; j < n; ++j)
 			if (s[j].motion != POOL_MOTION_POCKETED)
@@ -108,10 +130,13 @@ static leak_report run_and_check(pool_sim *sim, const pool_sim_def *def) {
 			seg[i] = after[k];
 			t0[i] = ev[e].time;
 			if (ev[e].type == POOL_EVENT_POCKET) {
-				// Pocketed where it met a rail line, not from outside the table.
+				// Pocketed where it met a rail line (the thesis model) or its hole's edge (jaws),
+				// not from outside the table.
 				const double R = p->ball_radius, dc = pool_table_contact_distance(&def->table, R);
 				const double x = before.pos.x, y = before.pos.y;
-				const double out = fmax(fmax(dc - x, x - (def->table.length - dc)), fmax(dc - y, y - (def->table.width - dc)));
+				const double out = def->table.pockets == POOL_POCKETS_JAWS
+				                       ? outside_hole(def, before.pos)
+				                       : fmax(fmax(dc - x, x - (def->table.length - dc)), fmax(dc - y, y - (def->table.width - dc)));
 				r.outside = fmax(r.outside, out);
 			}
 		}

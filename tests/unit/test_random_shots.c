@@ -222,8 +222,11 @@ static void test_random_shots(void **state) {
 	const char *env = getenv("POOL_TEST_SHOTS");
 	if (env && atoi(env) > 0)
 		shots = atoi(env);
-	// The default models, and every fourth shot the "thesis" set (the 2012 work's laws).
-	const pool_sim_def def = pool_default_sim_def(), thesis = thesis_sim_def();
+	// The default models, and every fourth shot the "thesis" set (the 2012 work's laws); the thesis
+	// model's pockets: check_positions and hostile.h's checks are its contact lines and mouths
+	// (pockets "jaws": test_jaws_shots.c).
+	pool_sim_def def = pool_default_sim_def(), thesis = thesis_sim_def();
+	def.table.pockets = thesis.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	pool_sim *sim, *again;
 	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
 	assert_int_equal(pool_sim_create(&def, &again, NULL), POOL_OK);
@@ -321,6 +324,9 @@ static void test_hostile_shots(void **state) {
 			classes[n_classes++] = c;
 		}
 	pool_sim_def def = pool_default_sim_def();
+	// The thesis model's pockets: check_positions and hostile.h's checks are its contact lines
+	// and mouths (pockets "jaws": test_jaws_shots.c).
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	pool_sim *sim, *again;
 	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
 	assert_int_equal(pool_sim_create(&def, &again, NULL), POOL_OK);

@@ -147,10 +147,15 @@ static int get_vec(parse_ctx *ctx, json_t *value, const char *path, size_t min_n
 	return 0;
 }
 
-static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
-	static const char *const fields[] = {"preset", "length", "width", "cushion_height",
-	                                     "corner_mouth", "side_mouth", NULL};
+// "table": a preset (its balls and cloth become the params' defaults: *preset_name), then any
+// field overriding it; the pocket model by name, cut angles in degrees.
+static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def, const char **preset_name) {
+	static const char *const fields[] = {"preset", "length", "width", "cushion_height", "corner_mouth",
+	                                     "side_mouth", "pockets", "corner_cut_angle", "side_cut_angle",
+	                                     "corner_jaw_radius", "side_jaw_radius", "corner_shelf", "side_shelf",
+	                                     "corner_hole_radius", "side_hole_radius", NULL};
 	*def = pool_default_table_def();
+	*preset_name = NULL;
 	if (!table)
 		return 0;
 	// "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}.
@@ -173,25 +178,45 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 		if (pool_table_preset(json_string_value(preset), def) != POOL_OK) {
 			char shown[POOL_ESCAPE_SHORT];
 			pool_escape_text(shown, sizeof shown, json_string_value(preset), json_string_length(preset));
-			return fail(ctx, "table.preset: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)", shown);
+			return fail(ctx, "table.preset: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)", shown);
 		}
+		*preset_name = json_string_value(preset);
+	}
+	json_t *pockets = json_object_get(table, "pockets");
+	if (pockets) {
+		const int model = json_is_string(pockets) ? pool_pockets_model_from_name(json_string_value(pockets)) : -1;
+		if (model < 0)
+			return fail(ctx, "table.pockets: must be \"jaws\", \"mouth_lines\" or \"none\"");
+		def->pockets = (pool_pockets_model)model;
 	}
 	struct {
 		const char *name;
 		double *field;
+		double scale;
 	} overrides[] = {
-		{"length", &def->length},
-		{"width", &def->width},
-		{"cushion_height", &def->cushion_height},
-		{"corner_mouth", &def->corner_mouth},
-		{"side_mouth", &def->side_mouth},
+		{"length", &def->length, 1.0},
+		{"width", &def->width, 1.0},
+		{"cushion_height", &def->cushion_height, 1.0},
+		{"corner_mouth", &def->corner_mouth, 1.0},
+		{"side_mouth", &def->side_mouth, 1.0},
+		{"corner_cut_angle", &def->corner_cut_angle, POOL_PI / 180.0},
+		{"side_cut_angle", &def->side_cut_angle, POOL_PI / 180.0},
+		{"corner_jaw_radius", &def->corner_jaw_radius, 1.0},
+		{"side_jaw_radius", &def->side_jaw_radius, 1.0},
+		{"corner_shelf", &def->corner_shelf, 1.0},
+		{"side_shelf", &def->side_shelf, 1.0},
+		{"corner_hole_radius", &def->corner_hole_radius, 1.0},
+		{"side_hole_radius", &def->side_hole_radius, 1.0},
 	};
 	for (size_t i = 0; i < sizeof overrides / sizeof overrides[0]; ++i) {
 		json_t *v = json_object_get(table, overrides[i].name);
 		char path[64];
 		snprintf(path, sizeof path, "table.%s", overrides[i].name);
-		if (v && get_number(ctx, v, path, overrides[i].field))
+		double x = 0.0;
+		if (v && get_number(ctx, v, path, &x))
 			return -1;
+		if (v)
+			*overrides[i].field = x * overrides[i].scale;
 	}
 	pool_error e = {{0}};
 	pool_result r = pool_table_def_validate(def, &e);
@@ -200,8 +225,10 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 	return 0;
 }
 
-static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
-	*p = pool_default_params();
+static int parse_params(parse_ctx *ctx, json_t *params, const char *preset, pool_params *p) {
+	// The preset's balls and cloth, else the defaults.
+	if (!preset || pool_params_preset(preset, p) != POOL_OK)
+		*p = pool_default_params();
 	if (!params)
 		return 0;
 	if (!json_is_object(params))
@@ -633,9 +660,10 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 	}
 
 	s->def = pool_default_sim_def();
-	if (parse_table(ctx, json_object_get(root, "table"), &s->def.table))
+	const char *preset = NULL;
+	if (parse_table(ctx, json_object_get(root, "table"), &s->def.table, &preset))
 		return -1;
-	if (parse_params(ctx, json_object_get(root, "params"), &s->def.params))
+	if (parse_params(ctx, json_object_get(root, "params"), preset, &s->def.params))
 		return -1;
 	if (parse_options(ctx, json_object_get(root, "options"), &s->def))
 		return -1;

@@ -159,7 +159,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 			len += ax[k] * ax[k];
 		}
 		len = std::sqrt(len);
-		dGeomID g = dCreateCapsule(space_, rc, len);
+		dGeomID g = dCreateCapsule(space_, seg.radius, len);
 		dMatrix3 rot;
 		dRFromZAxis(rot, ax[0], ax[1], ax[2]);
 		dGeomSetRotation(g, rot);
@@ -214,7 +214,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 		}
 		for (size_t s = 0; s < ns; ++s) {
 			double p[3] = {pi[0], pi[1], pi[2]};
-			if (pool_plugin::distance_to_axis(table_.segments[s], p) - (R + rc) <=
+			if (pool_plugin::distance_to_axis(table_.segments[s], p) - (R + table_.segments[s].radius) <=
 			    settings_.release_gap)
 				rail_contacts_.set_touching(i, s);
 		}
@@ -464,8 +464,7 @@ void Engine::after_step() {
 	rail_contacts_.release([&](size_t i, size_t s) {
 		const dReal *pi = dBodyGetPosition(balls_[i].body);
 		double p[3] = {pi[0], pi[1], pi[2]};
-		double gap = pool_plugin::distance_to_axis(table_.segments[s], p) -
-		             (R + settings_.capsule_radius);
+		double gap = pool_plugin::distance_to_axis(table_.segments[s], p) - (R + table_.segments[s].radius);
 		return !balls_[i].active || gap > settings_.release_gap;
 	});
 }
