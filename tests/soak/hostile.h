@@ -870,9 +870,6 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	// classes) nor the generator's stream depends on it.
 	if (((uint64_t)index * 0x9E3779B97F4A7C15ull) >> 62 == 3)
 		s->def.models = pool_thesis_models();
-	// The thesis model's pockets: these checks (contact lines, mouths on the rail lines) are its
-	// geometry; pockets "jaws" has its own invariants (tests/unit/test_jaws_shots.c).
-	s->def.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	s->def.max_events = HS_MAX_EVENTS;
 	s->def.max_time = HS_MAX_TIME;
 	switch (cls) {
@@ -886,6 +883,9 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	case HS_EXTREME_PARAMS: hs_gen_extreme_params(s, &r); break;
 	default: hs_gen_nose(s, &r); break;
 	}
+	// The thesis model's pockets: these checks (contact lines, mouths on the rail lines) are its
+	// geometry (set after the generators: the nose class takes a preset's table); pockets "jaws" has its own invariants (tests/unit/test_jaws_shots.c).
+	s->def.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	if (s->n == 0) { // a generator found no room at all: one ball in the middle
 		hs_add(s, hs_xy(0.5 * s->def.table.length, 0.5 * s->def.table.width, s->def.params.ball_radius));
 		hs_make_cue(s, 0);

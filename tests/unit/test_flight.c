@@ -308,6 +308,7 @@ static void test_linked_ball_between_mouth_ends(void **state) {
 	def.table.cushion_height = 0.03629;
 	def.table.corner_mouth = 0.0;
 	def.table.side_mouth = 0.010878570424890443;
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES; // the thesis geometry: mouths are gaps in the nose lines
 	def.max_time = 60.0;
 	def.max_events = 20000;
 	pool_params *p = &def.params;

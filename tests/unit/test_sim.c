@@ -15,6 +15,7 @@
 #include "collision.h"
 #include "motion.h"
 #include "pool/pool.h"
+#include "table_shape.h"
 #include "vec3.h"
 
 #ifndef M_PI
@@ -625,7 +626,8 @@ static void test_rest_never_while_airborne(void **state) {
 // naming the field. At 0.05 R about half of all planar shots on an 8 ft table ended with a ball
 // outside the table (up to 432 m), 7-9 % at 0.1-0.5 R; near 2 R the soak's shots ended with balls
 // past the lines. Noses just above the centre and at the highest accepted (1.9 R) are simulated:
-// random shots there keep every ball inside the contact lines.
+// random shots there keep every ball inside the cushions, with either pocket model: inside the
+// contact lines (mouth_lines), or never nearer the nose curve than R in 3D, dc on the cloth (jaws).
 static void test_low_nose_refused(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
@@ -645,9 +647,14 @@ static void test_low_nose_refused(void **state) {
 		}
 	}
 	const double kept[] = {1.001 * R, 1.9 * R};
+	const pool_pockets_model models[] = {POOL_POCKETS_MOUTH_LINES, POOL_POCKETS_JAWS};
 	uint64_t seed = 0x9E3779B97F4A7C15ull;
-	for (size_t k = 0; k < sizeof kept / sizeof kept[0]; ++k) {
+	for (size_t km = 0; km < 2 * sizeof kept / sizeof kept[0]; ++km) {
+		const size_t k = km / 2;
 		def.table.cushion_height = kept[k];
+		def.table.pockets = models[km % 2];
+		pool_table_shape shape;
+		assert_int_equal(pool_table_shape_build(&def.table, R, &shape, NULL), POOL_OK);
 		sim = make_sim(&def);
 		const double L = def.table.length, W = def.table.width, dc = pool_table_contact_distance(&def.table, R);
 		for (int shot = 0; shot < 200; ++shot) {
@@ -669,10 +676,12 @@ static void test_low_nose_refused(void **state) {
 			for (int i = 0; i < pool_sim_ball_count(sim); ++i) {
 				if (end[i].motion == POOL_MOTION_POCKETED)
 					continue;
-				const double out = fmax(fmax(dc - end[i].pos.x, end[i].pos.x - (L - dc)), fmax(dc - end[i].pos.y, end[i].pos.y - (W - dc)));
+				const double out = def.table.pockets == POOL_POCKETS_MOUTH_LINES
+				                       ? fmax(fmax(dc - end[i].pos.x, end[i].pos.x - (L - dc)), fmax(dc - end[i].pos.y, end[i].pos.y - (W - dc)))
+				                       : R - pool_shape_distance(&shape, end[i].pos, NULL);
 				if (out > POOL_TOUCH_TOLERANCE)
-					fail_msg("nose %.4g R, shot %d: ball %d ends %.3g m outside the contact lines", kept[k] / R, shot,
-					         (int)end[i].id, out);
+					fail_msg("nose %.4g R, pockets %s, shot %d: ball %d ends %.3g m inside the cushion", kept[k] / R,
+					         pool_pockets_model_name(def.table.pockets), shot, (int)end[i].id, out);
 			}
 		}
 		pool_sim_destroy(sim);
