@@ -204,9 +204,13 @@ def _parse_document(doc):
     err = CError()
     # table
     t = doc.get("table")
+    if isinstance(t, str):  # "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}
+        if "\0" in t or lib.pool_table_preset(t.encode(), byref(d.table)) != 0:
+            _fail(f'table: unknown preset "{t}" (wpa-9ft, wpa-8ft, wpa-7ft)')
+        t = None
     if t is not None:
         if not isinstance(t, dict):
-            _fail("table: must be an object")
+            _fail("table: must be a preset name or an object")
         _fields(t, "table", ("preset", "length", "width", "cushion_height", "corner_mouth",
                              "side_mouth"))
         if "preset" in t:
@@ -482,6 +486,8 @@ def _strike_table(strikes, base_ball, base, n_hint=None):
         for k in names:
             if k not in STRIKE_FIELDS:
                 raise ValueError(f"strikes: unknown field {k!r} (ball, speed, phi, theta, a, b)")
+            if strikes.dtype[k].kind not in "iuf":
+                raise TypeError(f"strikes.{k}: expected numbers, got {strikes.dtype[k]}")
         arr = strikes.reshape(-1)
         n = len(arr)
         if base is None and "speed" not in names:
@@ -492,6 +498,18 @@ def _strike_table(strikes, base_ball, base, n_hint=None):
         for j, k in enumerate(STRIKE_FIELDS[1:]):
             values[:, j] = arr[k] if k in names else base_v[j]
     else:
+        if not isinstance(strikes, np.ndarray):
+            # A bool is not a speed, a string not a number: NumPy would convert both silently.
+            for i, row in enumerate(strikes):
+                if isinstance(row, (str, bytes)):
+                    raise TypeError(f"strikes[{i}]: expected a row of 6 numbers, got {row!r}")
+                for j, x in enumerate(row):
+                    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.number)):
+                        name = STRIKE_FIELDS[j] if j < len(STRIKE_FIELDS) else str(j)
+                        raise TypeError(f"strikes[{i}].{name}: expected a number, got "
+                                        f"{type(x).__name__} {x!r}")
+        elif strikes.dtype.kind not in "iuf":
+            raise TypeError(f"strikes: expected numbers, got an array of {strikes.dtype}")
         a = np.asarray(strikes, dtype=np.float64)
         if a.ndim == 1 and a.size == 0:
             a = a.reshape(0, 6)
@@ -512,6 +530,9 @@ def _strike_table(strikes, base_ball, base, n_hint=None):
         if j == 0 and math.isnan(x) and base is None:
             raise ValueError(f"strikes[{i}].speed: missing (the layout has no strike to take "
                              "the speed from)")
+        if not math.isfinite(x):
+            raise ValueError(f"strikes[{i}].{STRIKE_FIELDS[j + 1]}: must be a finite number, "
+                             f"got {x:g}")
         raise ValueError(f"strikes[{i}].{STRIKE_FIELDS[j + 1]}: {x:g} is too large "
                          f"(limit {_MAX_ABS:g})")
     return ball_f.astype(np.int32), values

@@ -606,10 +606,13 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
                 self.assertEqual(r.returncode, 2, args)
                 assert_printable(self, r.stderr, repr(args))
                 self.assertTrue(b"\\u001b" in r.stderr or b"\\u0007" in r.stderr, r.stderr)
-        r = sim(write("ok_escape.json", straight_shot()), "-o", os.path.join(ARGS.work, "no", "\x1b.json"))
+        # Missing directories are created; one under a regular file cannot be.
+        write("not_a_directory", "x")
+        r = sim(write("ok_escape.json", straight_shot()), "-o",
+                os.path.join(ARGS.work, "not_a_directory", "\x1b.json"))
         self.assertNotEqual(r.returncode, 0)
         assert_printable(self, r.stderr, "output name")
-        self.assertIn(b"\\u001b.json: No such file or directory", r.stderr)
+        self.assertIn(b"\\u001b.json: Not a directory", r.stderr)
 
     def test_valid_variants(self):
         # Explicit table fields over a preset, parameters, a moving ball without a strike, 3D pos.

@@ -47,10 +47,31 @@ static bool starts_with_path(const char *message, const char *path) {
 	       (message[n] == '.' || message[n] == ':' || message[n] == '[');
 }
 
+// The library names the fields of its pool_sim_def "def.airborne", "def.max_time"...; a scenario
+// file holds them in "options".
+static const char *json_field_names(const char *message, char *out, size_t size) {
+	static const char from[] = "def.", to[] = "options.";
+	size_t n = 0;
+	for (const char *m = message; *m && n + 1 < size;) {
+		if (strncmp(m, from, sizeof from - 1) == 0 && (m == message || m[-1] == ' ' || m[-1] == '(') &&
+		    n + sizeof to < size) {
+			memcpy(out + n, to, sizeof to - 1);
+			n += sizeof to - 1;
+			m += sizeof from - 1;
+		} else {
+			out[n++] = *m++;
+		}
+	}
+	out[n] = '\0';
+	return out;
+}
+
 static int fail_lib(parse_ctx *ctx, const char *path, pool_result code, const pool_error *e) {
 	static const char *const roots[] = {"table", "params", "balls", "strike", "options", "models",
 	                                    NULL};
-	const char *message = e->message[0] ? e->message : pool_result_str(code);
+	char renamed[sizeof e->message + 64];
+	const char *message = json_field_names(e->message[0] ? e->message : pool_result_str(code), renamed,
+	                                       sizeof renamed);
 	if (starts_with_path(message, path))
 		return fail(ctx, "%s", message);
 	for (const char *const *root = roots; *root; ++root)
@@ -132,8 +153,17 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 	*def = pool_default_table_def();
 	if (!table)
 		return 0;
+	// "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}.
+	if (json_is_string(table)) {
+		if (pool_table_preset(json_string_value(table), def) != POOL_OK) {
+			char shown[POOL_ESCAPE_SHORT];
+			pool_escape_text(shown, sizeof shown, json_string_value(table), json_string_length(table));
+			return fail(ctx, "table: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)", shown);
+		}
+		return 0;
+	}
 	if (!json_is_object(table))
-		return fail(ctx, "table: must be an object");
+		return fail(ctx, "table: must be a preset name or an object");
 	if (check_fields(ctx, table, "table", fields))
 		return -1;
 	json_t *preset = json_object_get(table, "preset");

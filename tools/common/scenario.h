@@ -68,9 +68,6 @@ typedef struct pool_result_options {
 /// NULL on allocation failure. Byte-identical for identical simulations.
 char *pool_result_json(const pool_sim *sim, const pool_result_options *options);
 
-/// Name of a stop reason as written in "stats.stop_reason" ("rest", "max_time", ...).
-const char *pool_stop_reason_name(pool_stop_reason reason);
-
 #ifdef __cplusplus
 }
 #endif
