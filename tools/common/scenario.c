@@ -427,9 +427,8 @@ static int fail_lib_ball(parse_ctx *ctx, int index, pool_result code, const pool
 	return fail_lib(ctx, path, code, e);
 }
 
-// Airborne scenarios (options.airborne = true): the parse does not depend on the library
-// simulating airborne motion (pool_sim_create refuses it until it does; pool_scenario_setup then
-// returns that error). The rules the library has for planar balls are applied to each ball's
+// Airborne scenarios (options.airborne = true): the rules the library has for planar balls are
+// applied to each ball's
 // projection on the cloth, one ball per throw-away planar simulation (finite numbers, speed
 // limits, off the table), and the 3D rules here: a centre below z = R (beyond
 // POOL_TOUCH_TOLERANCE) is under the cloth, balls may not interpenetrate in 3D (a ball above

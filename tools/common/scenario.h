@@ -32,8 +32,9 @@ typedef struct pool_scenario {
 /// Planar scenarios (options.airborne false) are checked with the library's own rules (a ball
 /// must sit on the cloth, z = R, with no vertical velocity). Airborne scenarios accept 3D
 /// positions with z >= R (within POOL_TOUCH_TOLERANCE; "balls[i].pos: below the cloth") and
-/// vertical velocities, refuse 3D interpenetration, and do not need the library to simulate
-/// airborne motion: until it does, pool_scenario_setup returns its "options.airborne" error.
+/// vertical velocities and refuse 3D interpenetration. A "table" may be a preset name. The
+/// library's messages about its def (def.airborne, def.max_time...) are reported with the
+/// file's names (options.airborne...).
 int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
                         size_t err_size);
 
