@@ -50,3 +50,33 @@ pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_r
 	pool_vec3 d = pool_v3_sub(pos, nose);
 	return pool_v3_scale(d, 1.0 / pool_v3_len(d));
 }
+
+pool_pocket pool_table_pocket_past(const pool_table_def *table, double contact_distance, pool_vec3 pos) {
+	for (int r = POOL_RAIL_SOUTH; r <= POOL_RAIL_EAST; ++r) {
+		const pool_rail rail = (pool_rail)r;
+		const int along_x = pool_rail_along_x(rail);
+		const double across = along_x ? pos.y : pos.x, along = along_x ? pos.x : pos.y;
+		const double line = pool_rail_contact_line(table, contact_distance, rail);
+		const pool_pocket pocket = pool_pocket_at(table, rail, along);
+		if (pool_rail_side(rail) * (across - line) > 0.0 && pocket != POOL_POCKET_NONE)
+			return pocket;
+	}
+	return POOL_POCKET_NONE;
+}
+
+int pool_table_cushions_near(const pool_table_def *table, double contact_distance, pool_vec3 pos, double gap,
+                             pool_rail rails[4], pool_vec3 into[4]) {
+	int count = 0;
+	for (int r = POOL_RAIL_SOUTH; r <= POOL_RAIL_EAST; ++r) {
+		const pool_rail rail = (pool_rail)r;
+		const int along_x = pool_rail_along_x(rail);
+		const double side = pool_rail_side(rail);
+		const double line = pool_rail_contact_line(table, contact_distance, rail);
+		if (!(side * (line - (along_x ? pos.y : pos.x)) <= gap))
+			continue;
+		rails[count] = rail;
+		into[count] = along_x ? pool_v3(0.0, side, 0.0) : pool_v3(side, 0.0, 0.0);
+		++count;
+	}
+	return count;
+}

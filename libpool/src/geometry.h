@@ -36,4 +36,15 @@ pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double a
 /// point of the nose line to the centre, normalised.
 pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail);
 
+/// The pocket a ball centred at pos has fallen into on the cloth: past a rail's contact line
+/// (contact_distance inside its nose line) inside that rail's pocket mouth (the first such
+/// rail: south, north, west, east); POOL_POCKET_NONE when it is in no mouth past a line.
+pool_pocket pool_table_pocket_past(const pool_table_def *table, double contact_distance, pool_vec3 pos);
+
+/// The cushions a ball centred at pos on the cloth touches to within `gap` (its centre within
+/// gap of their contact lines, or past them), with each one's horizontal unit direction from the
+/// ball into the cushion; returns how many (at most 4), in rail order.
+int pool_table_cushions_near(const pool_table_def *table, double contact_distance, pool_vec3 pos, double gap,
+                             pool_rail rails[4], pool_vec3 into[4]);
+
 #endif

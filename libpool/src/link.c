@@ -1,5 +1,6 @@
-// LINK clusters in the world (link.h): the trigger, forming and merging clusters, their steps
-// and their lengths, balls leaving them, and their dissolution.
+// LINK clusters (link.h): the trigger, forming and merging clusters, their steps and their
+// lengths, balls leaving them, and their dissolution. Everything it knows of the world comes
+// through link->world (link.h).
 #include "link.h"
 
 #include <math.h>
@@ -8,12 +9,115 @@
 #include "contact.h"
 #include "geometry.h"
 #include "handlers.h"
+#include "memory.h"
 #include "motion.h"
-#include "schedule.h"
 #include "vec3.h"
 
-int pool_link_note_collision(pool_sim *sim, int i, int partner, double t) {
-	pool_contact_streak *streak = sim->body[i].streak;
+// ---- the world, as LINK may ask it
+
+static void state_at(const pool_link *link, int i, double t, pool_ball_state *out) {
+	link->world.state_at(link->world.ctx, i, t, out);
+}
+static void begin_segment(const pool_link *link, int i, const pool_ball_state *s, double t) {
+	link->world.begin_segment(link->world.ctx, i, s, t);
+}
+static pool_result record(const pool_link *link, double t, pool_event_type type, pool_pocket pocket, const int *balls,
+                          int m) {
+	return link->world.record(link->world.ctx, t, type, pocket, balls, m);
+}
+
+static int in_play(pool_motion motion) { return motion != POOL_MOTION_POCKETED && motion != POOL_MOTION_OFF_TABLE; }
+
+static int planar(const pool_link *link) { return !link->def->airborne; }
+
+// ---- lifetime
+
+void pool_link_init(pool_link *link, const pool_sim_def *def, double dc, const pool_allocator *alloc,
+                    const pool_link_world *world) {
+	link->def = def;
+	link->dc = dc;
+	link->alloc = alloc;
+	link->world = *world;
+}
+
+void pool_link_clear(pool_link *link) {
+	link->n = 0;
+	memset(&link->stats, 0, sizeof link->stats);
+	memset(&link->failed_step, 0, sizeof link->failed_step);
+	link->failed_size = 0;
+	pool_link_bases_clear(&link->ws.bases); // no warm start from another shot: the same input, the same bits
+}
+
+void pool_link_free(pool_link *link) {
+	void *arrays[] = {link->cluster_of, link->loose, link->tail,   link->streak, link->clusters,
+	                  link->states,     link->members, link->group, link->leaving, link->accel};
+	pool_link_workspace_free(&link->ws, link->alloc);
+	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
+		pool_mem_free(link->alloc, arrays[i]);
+	link->cluster_of = link->loose = link->members = link->group = NULL;
+	link->tail = NULL;
+	link->streak = NULL;
+	link->clusters = NULL;
+	link->states = link->leaving = NULL;
+	link->accel = NULL;
+	link->cap = link->n = 0;
+}
+
+pool_result pool_link_reserve(pool_link *link, int balls) {
+	if (balls <= link->cap)
+		return POOL_OK;
+	const int cap = pool_mem_next_cap(link->cap, balls);
+	void **arrays[] = {(void **)&link->cluster_of, (void **)&link->loose,   (void **)&link->tail,
+	                   (void **)&link->streak,     (void **)&link->clusters, (void **)&link->states,
+	                   (void **)&link->members,    (void **)&link->group,   (void **)&link->leaving,
+	                   (void **)&link->accel};
+	const size_t elems[] = {sizeof(int),
+	                        sizeof(int),
+	                        6 * sizeof(double),
+	                        POOL_LINK_PARTNERS * sizeof(pool_contact_streak),
+	                        sizeof(pool_cluster),
+	                        sizeof(pool_ball_state),
+	                        sizeof(int),
+	                        sizeof(int),
+	                        sizeof(pool_ball_state),
+	                        sizeof(pool_vec3)};
+	if (pool_mem_grow(link->alloc, arrays, elems, (int)(sizeof elems / sizeof elems[0]), link->n, cap))
+		return POOL_ERR_OUT_OF_MEMORY;
+	link->cap = cap;
+	return POOL_OK;
+}
+
+void pool_link_add_ball(pool_link *link, int i) {
+	link->cluster_of[i] = -1;
+	link->loose[i] = 0;
+	for (int e = 0; e < 6; ++e)
+		link->tail[6 * i + e] = 0.0;
+	for (int k = 0; k < POOL_LINK_PARTNERS; ++k) {
+		memset(&link->streak[POOL_LINK_PARTNERS * i + k], 0, sizeof link->streak[0]);
+		link->streak[POOL_LINK_PARTNERS * i + k].partner = -1;
+	}
+	link->clusters[i].active = 0;
+	link->n = i + 1;
+}
+
+double pool_link_next_step(const pool_link *link, int i) { return link->clusters[link->cluster_of[i]].t_next; }
+
+void pool_link_failure(const pool_link *link, double *residual, int *balls, int *contacts) {
+	if (residual)
+		*residual = link->failed_step.residual;
+	if (balls)
+		*balls = link->failed_size;
+	if (contacts)
+		*contacts = link->failed_step.contacts;
+}
+
+// ---- the trigger
+
+// Notes a recorded collision of ball i with `partner` (a ball index, or -2 - rail) at t and
+// returns 1 when it completes the trigger (POOL_LINK_TRIGGER_COLLISIONS within the window, or
+// POOL_LINK_TRIGGER_SAME_INSTANT at one instant).
+static int note_collision(pool_link *link, int i, int partner, double t) {
+	pool_contact_streak *streak = link->streak + POOL_LINK_PARTNERS * i;
 	int slot = -1, oldest = 0;
 	for (int k = 0; k < POOL_LINK_PARTNERS; ++k) {
 		if (streak[k].partner == partner)
@@ -43,11 +147,13 @@ int pool_link_note_collision(pool_sim *sim, int i, int partner, double t) {
 	return k->count >= POOL_LINK_TRIGGER_COLLISIONS || k->same >= POOL_LINK_TRIGGER_SAME_INSTANT;
 }
 
+// ---- clusters
+
 // The cluster's balls, ascending by index (so every step reads them in the same order).
-static int members(const pool_sim *sim, int c, int *out) {
+static int members(const pool_link *link, int c, int *out) {
 	int m = 0;
-	for (int i = 0; i < sim->n; ++i)
-		if (sim->body[i].cluster == c)
+	for (int i = 0; i < link->n; ++i)
+		if (link->cluster_of[i] == c)
 			out[m++] = i;
 	return m;
 }
@@ -58,42 +164,39 @@ static void add_tail(pool_ball_state *s, const double *tail) {
 	s->omega = pool_v3_add(s->omega, pool_v3(tail[3], tail[4], tail[5]));
 }
 
-// Ball b keeps its linked segment's mean velocities (the tail is dropped, or not yet known).
-static void drop_tail(pool_body *b) {
+// Ball i keeps its linked segment's mean velocities (the tail is dropped, or not yet known).
+static void drop_tail(pool_link *link, int i) {
 	for (int e = 0; e < 6; ++e)
-		b->tail[e] = 0.0;
+		link->tail[6 * i + e] = 0.0;
 }
 
 // Linked ball i's state at t, the end of its step: the segment's mean velocity plus the step's
 // tail (zero after an interruption).
-static void step_end_state(const pool_sim *sim, int i, double t, pool_ball_state *s) {
-	pool_world_state_now(sim, i, t, s);
-	add_tail(s, sim->body[i].tail);
+static void step_end_state(const pool_link *link, int i, double t, pool_ball_state *s) {
+	state_at(link, i, t, s);
+	add_tail(s, link->tail + 6 * i);
 }
 
 // Ball i joins cluster c at t: it (or the whole cluster it is in) starts linked segments there.
-static void join(pool_sim *sim, int i, int c, double t) {
-	pool_body *b = &sim->body[i];
-	if (b->cluster == c)
+static void join(pool_link *link, int i, int c, double t) {
+	if (link->cluster_of[i] == c)
 		return;
-	if (b->cluster >= 0) {
-		const int other = b->cluster;
-		sim->clusters[other].active = 0;
-		for (int k = 0; k < sim->n; ++k)
-			if (sim->body[k].cluster == other)
-				sim->body[k].cluster = -1, join(sim, k, c, t);
+	if (link->cluster_of[i] >= 0) {
+		const int other = link->cluster_of[i];
+		link->clusters[other].active = 0;
+		for (int k = 0; k < link->n; ++k)
+			if (link->cluster_of[k] == other)
+				link->cluster_of[k] = -1, join(link, k, c, t);
 		return;
 	}
 	pool_ball_state s;
-	pool_world_state_now(sim, i, t, &s);
+	state_at(link, i, t, &s);
 	s.motion = POOL_MOTION_LINKED;
-	b->cluster = c;
-	b->loose = 0;
-	drop_tail(b);
-	pool_schedule_begin_segment(sim, i, &s, t);
+	link->cluster_of[i] = c;
+	link->loose[i] = 0;
+	drop_tail(link, i);
+	begin_segment(link, i, &s, t);
 }
-
-void pool_link_adopt(pool_sim *sim, int i, int c, double t) { join(sim, i, c, t); }
 
 // pool_link_pressed_pair with the two balls' accelerations given.
 static int pressed_with(const pool_ball_state *s, pool_vec3 a0, pool_vec3 a1) {
@@ -107,8 +210,8 @@ static int pressed_with(const pool_ball_state *s, pool_vec3 a0, pool_vec3 a1) {
 	return approach_accel > 0.0;
 }
 
-int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
-	const pool_params *p = &sim->def.params;
+int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s) {
+	const pool_params *p = &link->def->params;
 	return pressed_with(s, pool_motion_accel(p, &s[0]), pool_motion_accel(p, &s[1]));
 }
 
@@ -118,29 +221,29 @@ int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s) {
 // the balls of a frozen rack touch one another, and a step that linked them all would solve
 // the whole rack's contacts; should the cluster press it later, the collision prediction
 // (which sees linked balls) finds the contact and the trigger links it then.
-static void absorb(pool_sim *sim, int c, double t) {
-	const double reach = 2.0 * sim->def.params.ball_radius + POOL_LINK_TOUCH_GAP;
+static void absorb(pool_link *link, int c, double t) {
+	const double reach = 2.0 * link->def->params.ball_radius + POOL_LINK_TOUCH_GAP;
 	for (int changed = 1; changed;) {
 		changed = 0;
-		for (int k = 0; k < sim->n; ++k) {
-			const pool_body *bk = &sim->body[k];
-			if (!bk->active || bk->cluster == c)
+		for (int k = 0; k < link->n; ++k) {
+			if (link->cluster_of[k] == c)
 				continue;
-			pool_vec3 pk, vk;
-			pool_segment_path(&bk->seg, t - bk->seg.t0, &pk, &vk);
-			for (int i = 0; i < sim->n; ++i) {
-				const pool_body *bi = &sim->body[i];
-				if (bi->cluster != c)
+			pool_ball_state sk;
+			state_at(link, k, t, &sk);
+			if (!in_play(sk.motion))
+				continue;
+			for (int i = 0; i < link->n; ++i) {
+				if (link->cluster_of[i] != c)
 					continue;
-				pool_vec3 pi, vi;
-				pool_segment_path(&bi->seg, t - bi->seg.t0, &pi, &vi);
-				const pool_vec3 d = pool_v3_sub(pk, pi);
+				pool_ball_state si;
+				state_at(link, i, t, &si);
+				const pool_vec3 d = pool_v3_sub(sk.pos, si.pos);
 				const double dist = pool_v3_len(d);
 				if (!(dist <= reach) || !(dist > 0.0))
 					continue;
-				const double closing = pool_closing_speed(pk, vk, pi, vi);
+				const double closing = pool_closing_speed(sk.pos, sk.vel, si.pos, si.vel);
 				if (closing > POOL_LINK_REST_SPEED && closing <= POOL_LINK_IMPACT_SPEED) {
-					join(sim, k, c, t);
+					join(link, k, c, t);
 					changed = 1;
 					break;
 				}
@@ -150,15 +253,10 @@ static void absorb(pool_sim *sim, int c, double t) {
 }
 
 // Every member's next event becomes the cluster's step at t_next.
-static void reschedule(pool_sim *sim, int c, double now) {
-	int *idx = sim->link_members;
-	const int m = members(sim, c, idx);
-	for (int k = 0; k < m; ++k) {
-		const int i = idx[k];
-		pool_ball_state s = sim->cur[i];
-		pool_schedule_begin_segment(sim, i, &s, sim->body[i].seg.t0);
-	}
-	pool_schedule_after_event(sim, idx, m, now);
+static void reschedule(pool_link *link, int c, double now) {
+	int *idx = link->members;
+	const int m = members(link, c, idx);
+	link->world.refresh(link->world.ctx, idx, m, now);
 }
 
 // Something from outside changed cluster c: what its last step decided about who leaves no
@@ -167,53 +265,55 @@ static void reschedule(pool_sim *sim, int c, double now) {
 // passed: the next step is POOL_LINK_STEP_TIME again, and the velocities stay the step's mean
 // (its tail, half a step of cloth resistance, is dropped: at most 1/2 mu_roll g
 // POOL_LINK_STEP_MAX, 0.8 mm/s).
-static void unsettle(pool_sim *sim, int c) {
-	sim->clusters[c].quiet = 0;
-	sim->clusters[c].dt = POOL_LINK_STEP_TIME;
-	for (int k = 0; k < sim->n; ++k)
-		if (sim->body[k].cluster == c) {
-			sim->body[k].loose = 0;
-			drop_tail(&sim->body[k]);
+static void unsettle(pool_link *link, int c) {
+	link->clusters[c].quiet = 0;
+	link->clusters[c].dt = POOL_LINK_STEP_TIME;
+	for (int k = 0; k < link->n; ++k)
+		if (link->cluster_of[k] == c) {
+			link->loose[k] = 0;
+			drop_tail(link, k);
 		}
 }
 
-pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t) {
+// Forms a cluster at t around the balls seed[0..m) (merging every cluster they touch) and
+// records link_begin; its first step is at t.
+static pool_result link_begin(pool_link *link, const int *seed, int m, double t) {
 	int c = -1;
 	for (int k = 0; k < m; ++k) {
-		const int in = sim->body[seed[k]].cluster;
+		const int in = link->cluster_of[seed[k]];
 		if (in >= 0 && (c < 0 || in < c))
 			c = in;
 	}
 	if (c < 0) {
-		for (c = 0; c < sim->n && sim->clusters[c].active; ++c) {
+		for (c = 0; c < link->n && link->clusters[c].active; ++c) {
 		}
-		sim->clusters[c].steps = 0;
-		sim->link_stats.clusters++;
+		link->clusters[c].steps = 0;
+		link->stats.clusters++;
 	}
-	sim->clusters[c].active = 1;
-	sim->clusters[c].t_next = t;
-	unsettle(sim, c);
+	link->clusters[c].active = 1;
+	link->clusters[c].t_next = t;
+	unsettle(link, c);
 	for (int k = 0; k < m; ++k)
-		join(sim, seed[k], c, t);
-	absorb(sim, c, t);
-	int *idx = sim->link_members;
-	const int count = members(sim, c, idx);
-	// Balls already linked restart their segments here, so link_begin records every ball's state
-	// at t (the history evolves each recorded state from its event's time).
-	for (int k = 0; k < count; ++k)
-		if (sim->body[idx[k]].seg.t0 < t) {
-			pool_ball_state s;
-			pool_world_state_now(sim, idx[k], t, &s);
-			pool_schedule_begin_segment(sim, idx[k], &s, t);
-		}
-	pool_world_record_event(sim, t, POOL_EVENT_LINK_BEGIN, POOL_RAIL_NONE, POOL_POCKET_NONE, idx, count);
-	reschedule(sim, c, t);
-	return POOL_OK;
+		join(link, seed[k], c, t);
+	absorb(link, c, t);
+	int *idx = link->members;
+	const int count = members(link, c, idx);
+	// Every ball restarts its segment here, so link_begin records every ball's state at t (the
+	// history evolves each recorded state from its event's time); for a ball whose segment began
+	// at t that is the same segment.
+	for (int k = 0; k < count; ++k) {
+		pool_ball_state s;
+		state_at(link, idx[k], t, &s);
+		begin_segment(link, idx[k], &s, t);
+	}
+	const pool_result r = record(link, t, POOL_EVENT_LINK_BEGIN, POOL_POCKET_NONE, idx, count);
+	reschedule(link, c, t);
+	return r;
 }
 
 // Every ball of the cluster still (a heap resting on itself: nothing to step until hit).
-static int all_still(const pool_sim *sim, const pool_ball_state *s, int m) {
-	const double R = sim->def.params.ball_radius;
+static int all_still(const pool_link *link, const pool_ball_state *s, int m) {
+	const double R = link->def->params.ball_radius;
 	for (int k = 0; k < m; ++k)
 		if (pool_v3_len(s[k].vel) > POOL_LINK_REST_SPEED || pool_v3_len(s[k].omega) * R > POOL_LINK_REST_SPEED)
 			return 0;
@@ -222,8 +322,8 @@ static int all_still(const pool_sim *sim, const pool_ball_state *s, int m) {
 
 // Groups (in group[0..m)) the balls of s[0..m) that touch and whose velocities, and with
 // `spin_too` their spins' surface speeds, agree to within POOL_APPROACH_EPS.
-static void group_common(const pool_sim *sim, const pool_ball_state *s, int m, int spin_too, int *group) {
-	const double R = sim->def.params.ball_radius, reach = 2.0 * R + POOL_LINK_TOUCH_GAP;
+static void group_common(const pool_link *link, const pool_ball_state *s, int m, int spin_too, int *group) {
+	const double R = link->def->params.ball_radius, reach = 2.0 * R + POOL_LINK_TOUCH_GAP;
 	for (int k = 0; k < m; ++k)
 		group[k] = k;
 	for (int a = 0; a < m; ++a)
@@ -245,9 +345,9 @@ static void group_common(const pool_sim *sim, const pool_ball_state *s, int m, i
 // closed form and never meet again, where the rounding of the LCP's solution (1e-14 m/s)
 // would make them "collide" by nothing at every event. The means keep momentum and never add
 // energy.
-static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, int *group) {
+static void merge_common_motion(const pool_link *link, pool_ball_state *s, int m, int *group) {
 	for (int pass = 0; pass < 2; ++pass) {
-		group_common(sim, s, m, pass, group);
+		group_common(link, s, m, pass, group);
 		for (int g = 0; g < m; ++g) {
 			pool_vec3 mean = {0.0, 0.0, 0.0};
 			int count = 0;
@@ -282,8 +382,8 @@ static void merge_common_motion(const pool_sim *sim, pool_ball_state *s, int m, 
 /// 1e-16 to 1e-12 on most solves.)
 #define POOL_LINK_LONG_STEP_RESIDUAL 1e-9
 
-static void settle(const pool_sim *sim, pool_ball_state *s) {
-	const double R = sim->def.params.ball_radius;
+static void settle(const pool_link *link, pool_ball_state *s) {
+	const double R = link->def->params.ball_radius;
 	const pool_vec3 w_perp = pool_v3(s->omega.x, s->omega.y, 0.0);
 	if (s->pos.z > R + POOL_TOUCH_TOLERANCE || pool_v3_len(s->vel) > POOL_LINK_SETTLE_SPEED ||
 	    pool_v3_len(w_perp) * R > POOL_LINK_SETTLE_SPEED)
@@ -297,59 +397,54 @@ static void settle(const pool_sim *sim, pool_ball_state *s) {
 // Turns the end-of-step states s[0..m) of balls leaving a cluster together into the closed-form
 // states they resume: balls moving together share their motion, a crawling ball on the cloth
 // settles, and the on-cloth state of the velocities is derived (airborne above the cloth).
-static void leaving_states(pool_sim *sim, pool_ball_state *s, int m) {
-	merge_common_motion(sim, s, m, sim->work);
+static void leaving_states(pool_link *link, pool_ball_state *s, int m) {
+	merge_common_motion(link, s, m, link->group);
 	for (int k = 0; k < m; ++k) {
-		settle(sim, &s[k]);
+		settle(link, &s[k]);
 		s[k].motion = POOL_MOTION_SLIDING;
-		pool_motion_after_impulse(&sim->def, &s[k]);
+		pool_motion_after_impulse(link->def, &s[k]);
 	}
 }
 
 // Balls idx[0..m) of a cluster leave it at t and resume their closed-form states, with the
 // velocities of the last step (its motion up to t): airborne above the cloth, else the on-cloth
 // state of the velocities (pool_motion_after_impulse derives it); link_end records them.
-static void release(pool_sim *sim, const int *idx, int m, double t) {
-	pool_ball_state *s = sim->link_states;
+static pool_result release(pool_link *link, const int *idx, int m, double t) {
+	pool_ball_state *s = link->states;
 	for (int k = 0; k < m; ++k)
-		step_end_state(sim, idx[k], t, &s[k]);
-	leaving_states(sim, s, m);
+		step_end_state(link, idx[k], t, &s[k]);
+	leaving_states(link, s, m);
 	for (int k = 0; k < m; ++k) {
-		sim->body[idx[k]].cluster = -1;
-		sim->body[idx[k]].loose = 0;
-		pool_schedule_begin_segment(sim, idx[k], &s[k], t);
+		link->cluster_of[idx[k]] = -1;
+		link->loose[idx[k]] = 0;
+		begin_segment(link, idx[k], &s[k], t);
 	}
-	pool_world_record_event(sim, t, POOL_EVENT_LINK_END, POOL_RAIL_NONE, POOL_POCKET_NONE, idx, m);
-	pool_schedule_after_event(sim, idx, m, t);
+	const pool_result r = record(link, t, POOL_EVENT_LINK_END, POOL_POCKET_NONE, idx, m);
+	link->world.changed(link->world.ctx, idx, m, t);
+	return r;
 }
 
 // Members past a rail's contact line inside a pocket mouth at t (the step's LCP has no rail
 // there; the crossing's own pocket event is predicted, this catches a ball that was already
 // past the line when its segment began) fall into that pocket now.
-static pool_result pocket_strays(pool_sim *sim, int c, double t) {
-	const pool_table_def *table = &sim->def.table;
-	for (int k = 0; k < sim->n; ++k) {
-		if (sim->body[k].cluster != c)
+static pool_result pocket_strays(pool_link *link, int c, double t) {
+	for (int k = 0; k < link->n; ++k) {
+		if (link->cluster_of[k] != c)
 			continue;
 		pool_ball_state s;
-		pool_world_state_now(sim, k, t, &s);
-		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
-			const int along_x = pool_rail_along_x((pool_rail)rail);
-			const double across = along_x ? s.pos.y : s.pos.x, along = along_x ? s.pos.x : s.pos.y;
-			const double line = pool_rail_contact_line(table, sim->dc, (pool_rail)rail);
-			const pool_pocket pocket = pool_pocket_at(table, (pool_rail)rail, along);
-			if (!(pool_rail_side((pool_rail)rail) * (across - line) > 0.0) || pocket == POOL_POCKET_NONE)
-				continue;
-			if (pool_world_reserve_history(sim, 1, 1))
-				return POOL_ERR_OUT_OF_MEMORY;
-			pool_take_out_of_play(&s, POOL_MOTION_POCKETED);
-			sim->body[k].cluster = -1;
-			sim->body[k].active = 0;
-			pool_schedule_begin_segment(sim, k, &s, t);
-			pool_world_record_event(sim, t, POOL_EVENT_POCKET, POOL_RAIL_NONE, pocket, &k, 1);
-			pool_schedule_after_event(sim, &k, 1, t);
-			break;
-		}
+		state_at(link, k, t, &s);
+		const pool_pocket pocket = pool_table_pocket_past(&link->def->table, link->dc, s.pos);
+		if (pocket == POOL_POCKET_NONE)
+			continue;
+		if (link->world.reserve(link->world.ctx, 1, 1))
+			return POOL_ERR_OUT_OF_MEMORY;
+		pool_take_out_of_play(&s, POOL_MOTION_POCKETED);
+		link->cluster_of[k] = -1;
+		begin_segment(link, k, &s, t);
+		const pool_result r = record(link, t, POOL_EVENT_POCKET, pocket, &k, 1);
+		link->world.changed(link->world.ctx, &k, 1, t);
+		if (r)
+			return r;
 	}
 	return POOL_OK;
 }
@@ -358,33 +453,33 @@ static pool_result pocket_strays(pool_sim *sim, int c, double t) {
 // would press together again at once stay linked: leaving, they would collide at once with
 // nothing to part them and the trigger would link them again, one cluster per step where one
 // cluster holds them.
-static void hold_pressed(pool_sim *sim, const int *idx, const pool_ball_state *s, int m, double dt) {
-	pool_ball_state *free_state = sim->link_leaving;
+static void hold_pressed(pool_link *link, const int *idx, const pool_ball_state *s, int m, double dt) {
+	pool_ball_state *free_state = link->leaving;
 	for (int k = 0; k < m; ++k) {
 		free_state[k] = s[k];
-		add_tail(&free_state[k], sim->link_ws.ball_tail + 6 * k);
-		// link_accel held the velocity at the step's start (pool_link_step_event)
-		sim->link_accel[k] = pool_v3_scale(pool_v3_sub(free_state[k].vel, sim->link_accel[k]), 1.0 / dt);
+		add_tail(&free_state[k], link->ws.ball_tail + 6 * k);
+		// accel held the velocity at the step's start (pool_link_step_event)
+		link->accel[k] = pool_v3_scale(pool_v3_sub(free_state[k].vel, link->accel[k]), 1.0 / dt);
 	}
-	leaving_states(sim, free_state, m); // as release() would make them
+	leaving_states(link, free_state, m); // as release() would make them
 	// A loose ball touching one that stays is held too when that one closes on it or presses
 	// it (the staying ball moving uniformly, as linked balls do): it would be hit at once.
-	const double reach = 2.0 * sim->def.params.ball_radius + POOL_LINK_TOUCH_GAP;
+	const double reach = 2.0 * link->def->params.ball_radius + POOL_LINK_TOUCH_GAP;
 	for (int changed = 1; changed;) {
 		changed = 0;
 		for (int a = 0; a < m; ++a)
 			for (int b = a + 1; b < m; ++b) {
-				pool_body *ba = &sim->body[idx[a]], *bb = &sim->body[idx[b]];
-				if ((!ba->loose && !bb->loose) || !(pool_v3_len(pool_v3_sub(s[a].pos, s[b].pos)) <= reach))
+				int *la = &link->loose[idx[a]], *lb = &link->loose[idx[b]];
+				if ((!*la && !*lb) || !(pool_v3_len(pool_v3_sub(s[a].pos, s[b].pos)) <= reach))
 					continue;
 				// A staying ball goes on as its last step did (its acceleration over it).
 				const pool_ball_state pair[2] = {free_state[a], free_state[b]};
-				const pool_vec3 aa = ba->loose ? pool_motion_accel(&sim->def.params, &pair[0]) : sim->link_accel[a];
-				const pool_vec3 ab = bb->loose ? pool_motion_accel(&sim->def.params, &pair[1]) : sim->link_accel[b];
+				const pool_vec3 aa = *la ? pool_motion_accel(&link->def->params, &pair[0]) : link->accel[a];
+				const pool_vec3 ab = *lb ? pool_motion_accel(&link->def->params, &pair[1]) : link->accel[b];
 				const double closing = pool_closing_speed(pair[0].pos, pair[0].vel, pair[1].pos, pair[1].vel);
 				if (closing > POOL_APPROACH_EPS || pressed_with(pair, aa, ab)) {
-					changed |= ba->loose | bb->loose;
-					ba->loose = bb->loose = 0;
+					changed |= *la | *lb;
+					*la = *lb = 0;
 				}
 			}
 	}
@@ -397,16 +492,16 @@ static double next_step_length(double dt, double accel) {
 	return fmax(POOL_LINK_STEP_TIME, fmin(fmin(2.0 * dt, POOL_LINK_STEP_MAX), bound));
 }
 
-pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
-	const int c = sim->body[i].cluster;
-	pool_cluster *cl = &sim->clusters[c];
-	absorb(sim, c, t);
-	const pool_result rp = pocket_strays(sim, c, t);
+pool_result pool_link_step_event(pool_link *link, int i, double t) {
+	const int c = link->cluster_of[i];
+	pool_cluster *cl = &link->clusters[c];
+	absorb(link, c, t);
+	const pool_result rp = pocket_strays(link, c, t);
 	if (rp)
 		return rp;
-	int *idx = sim->link_members;
-	pool_ball_state *s = sim->link_states;
-	int m = members(sim, c, idx);
+	int *idx = link->members;
+	pool_ball_state *s = link->states;
+	int m = members(link, c, idx);
 	if (m == 0) {
 		cl->active = 0;
 		return POOL_OK;
@@ -415,45 +510,49 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	// pair is merged by it) and a leaving ball keeps the motion it had.
 	if (cl->quiet) {
 		cl->active = 0;
-		release(sim, idx, m, t);
-		return POOL_OK;
+		return release(link, idx, m, t);
 	}
 	// The loose balls first (members keep ascending order within each part), then they leave:
 	// one link_end with them (pool_sim_step reserved the history for it and the step).
 	int loose = 0;
 	for (int k = 0; k < m; ++k)
-		if (sim->body[idx[k]].loose) {
+		if (link->loose[idx[k]]) {
 			const int ball = idx[k];
 			for (int j = k; j > loose; --j)
 				idx[j] = idx[j - 1];
 			idx[loose++] = ball;
 		}
 	if (loose > 0) {
-		release(sim, idx, loose, t);
-		m = members(sim, c, idx);
+		const pool_result rr = release(link, idx, loose, t);
+		if (rr)
+			return rr;
+		m = members(link, c, idx);
 		if (m == 0) {
 			cl->active = 0;
 			return POOL_OK;
 		}
 	}
 	for (int k = 0; k < m; ++k)
-		step_end_state(sim, idx[k], t, &s[k]);
+		step_end_state(link, idx[k], t, &s[k]);
 	for (int k = 0; k < m; ++k)
-		sim->link_accel[k] = s[k].vel;
+		link->accel[k] = s[k].vel;
 	pool_link_step_stats st;
-	pool_result r = pool_link_step(&sim->def, s, m, cl->dt, &sim->link_ws, &sim->alloc, &st);
+	pool_result r = pool_link_step(link->def, s, m, cl->dt, &link->ws, link->alloc, &st);
 	if (r == POOL_OK && cl->dt > POOL_LINK_STEP_TIME && st.residual > POOL_LINK_LONG_STEP_RESIDUAL) {
 		// A long step moves the balls by its velocity error times dt: one the solve left less
 		// accurate is taken again at POOL_LINK_STEP_TIME.
-		sim->link_stats.pivots += st.pivots;
+		link->stats.pivots += st.pivots;
 		cl->dt = POOL_LINK_STEP_TIME;
 		for (int k = 0; k < m; ++k)
-			step_end_state(sim, idx[k], t, &s[k]);
-		r = pool_link_step(&sim->def, s, m, cl->dt, &sim->link_ws, &sim->alloc, &st);
+			step_end_state(link, idx[k], t, &s[k]);
+		r = pool_link_step(link->def, s, m, cl->dt, &link->ws, link->alloc, &st);
 	}
-	if (r)
+	if (r) {
+		link->failed_step = st;
+		link->failed_size = m;
 		return r;
-	pool_link_stats *total = &sim->link_stats;
+	}
+	pool_link_stats *total = &link->stats;
 	total->steps++;
 	total->pivots += st.pivots;
 	total->warm_solves += st.warm;
@@ -461,7 +560,7 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	total->max_contacts = st.contacts > total->max_contacts ? st.contacts : total->max_contacts;
 	total->max_residual = fmax(total->max_residual, st.residual);
 	cl->steps++;
-	const int still = all_still(sim, s, m);
+	const int still = all_still(link, s, m);
 	const double this_dt = cl->dt;
 	// A ball nothing presses leaves at the next step: on the cloth the closed forms take over
 	// its contacts (two balls rolling together in contact stay so by themselves; if friction
@@ -469,15 +568,15 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 	// nothing. The cluster dissolves when every ball leaves; a heap at rest above the cloth
 	// sleeps instead.
 	for (int k = 0; k < m; ++k) {
-		const int on_cloth = s[k].pos.z <= sim->def.params.ball_radius + POOL_TOUCH_TOLERANCE;
+		const int on_cloth = s[k].pos.z <= link->def->params.ball_radius + POOL_TOUCH_TOLERANCE;
 		// (the push of a step of dt: POOL_LINK_PUSH_MIN per POOL_LINK_STEP_TIME)
-		const int unpressed = sim->link_ws.ball_push[k] <= POOL_LINK_PUSH_MIN * (this_dt / POOL_LINK_STEP_TIME);
-		sim->body[idx[k]].loose = (on_cloth && (unpressed || still)) || (unpressed && sim->link_ws.ball_touching[k] == 0);
+		const int unpressed = link->ws.ball_push[k] <= POOL_LINK_PUSH_MIN * (this_dt / POOL_LINK_STEP_TIME);
+		link->loose[idx[k]] = (on_cloth && (unpressed || still)) || (unpressed && link->ws.ball_touching[k] == 0);
 	}
-	hold_pressed(sim, idx, s, m, cl->dt);
+	hold_pressed(link, idx, s, m, cl->dt);
 	int leaving = 0;
 	for (int k = 0; k < m; ++k)
-		leaving += sim->body[idx[k]].loose;
+		leaving += link->loose[idx[k]];
 	cl->quiet = leaving == m;
 	// A cluster whose balls are all still and all held sleeps until something hits it: its
 	// balls are then at rest (slower than POOL_LINK_REST_SPEED, they would otherwise creep on
@@ -489,39 +588,37 @@ pool_result pool_link_step_event(pool_sim *sim, int i, double t) {
 		if (sleeps) {
 			s[k].vel = s[k].omega = pool_v3(0.0, 0.0, 0.0);
 			for (int e = 0; e < 6; ++e)
-				sim->link_ws.ball_tail[6 * k + e] = 0.0;
+				link->ws.ball_tail[6 * k + e] = 0.0;
 		}
-		memcpy(sim->body[idx[k]].tail, sim->link_ws.ball_tail + 6 * k, sizeof sim->body[idx[k]].tail);
+		memcpy(link->tail + 6 * idx[k], link->ws.ball_tail + 6 * k, 6 * sizeof(double));
 		s[k].motion = POOL_MOTION_LINKED;
 		// The LCP's rounding (down to 1e-36 m/s) is no motion: a linked ball drifting at it
 		// would "collide" with every touching ball outside. Below POOL_REST_EPS, as in the
 		// closed-form states' own clean-up, a velocity or spin is zero (1e-15 m per step).
 		if (pool_v3_len(s[k].vel) <= POOL_REST_EPS)
 			s[k].vel = pool_v3(0.0, 0.0, 0.0);
-		if (pool_v3_len(s[k].omega) * sim->def.params.ball_radius <= POOL_REST_EPS)
+		if (pool_v3_len(s[k].omega) * link->def->params.ball_radius <= POOL_REST_EPS)
 			s[k].omega = pool_v3(0.0, 0.0, 0.0);
-		if (pool_world_planar(sim)) {
-			s[k].pos.z = sim->def.params.ball_radius;
+		if (planar(link)) {
+			s[k].pos.z = link->def->params.ball_radius;
 			s[k].vel.z = 0.0;
 		}
-		pool_schedule_begin_segment(sim, idx[k], &s[k], t);
+		begin_segment(link, idx[k], &s[k], t);
 	}
-	pool_world_record_event(sim, t, POOL_EVENT_LINK_STEP, POOL_RAIL_NONE, POOL_POCKET_NONE, idx, m);
-	pool_schedule_after_event(sim, idx, m, t);
-	return POOL_OK;
+	const pool_result rec = record(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
+	link->world.changed(link->world.ctx, idx, m, t);
+	return rec;
 }
 
 // A contact inside cluster c (two of its balls, or one and a rail's nose, touching) closing
 // faster than POOL_LINK_IMPACT_SPEED at t: a hit from outside passed on into the cluster.
-static int hit_inside(pool_sim *sim, int c, double t) {
-	const pool_params *p = &sim->def.params;
-	const pool_table_def *table = &sim->def.table;
-	const double reach = 2.0 * p->ball_radius + POOL_LINK_TOUCH_GAP;
-	int *idx = sim->link_members;
-	pool_ball_state *s = sim->link_states;
-	const int m = members(sim, c, idx);
+static int hit_inside(pool_link *link, int c, double t) {
+	const double reach = 2.0 * link->def->params.ball_radius + POOL_LINK_TOUCH_GAP;
+	int *idx = link->members;
+	pool_ball_state *s = link->states;
+	const int m = members(link, c, idx);
 	for (int k = 0; k < m; ++k)
-		pool_world_state_now(sim, idx[k], t, &s[k]);
+		state_at(link, idx[k], t, &s[k]);
 	for (int a = 0; a < m; ++a) {
 		for (int b = a + 1; b < m; ++b) {
 			const pool_vec3 d = pool_v3_sub(s[b].pos, s[a].pos);
@@ -530,55 +627,115 @@ static int hit_inside(pool_sim *sim, int c, double t) {
 			    pool_closing_speed(s[a].pos, s[a].vel, s[b].pos, s[b].vel) > POOL_LINK_IMPACT_SPEED)
 				return 1;
 		}
-		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
-			const int along_x = pool_rail_along_x((pool_rail)rail);
-			const double side = pool_rail_side((pool_rail)rail);
-			const double line = pool_rail_contact_line(table, sim->dc, (pool_rail)rail);
-			const double across = along_x ? s[a].pos.y : s[a].pos.x, speed = along_x ? s[a].vel.y : s[a].vel.x;
-			if (side * (line - across) <= POOL_LINK_TOUCH_GAP && side * speed > POOL_LINK_IMPACT_SPEED)
+		pool_rail rails[4];
+		pool_vec3 into[4];
+		const int near = pool_table_cushions_near(&link->def->table, link->dc, s[a].pos, POOL_LINK_TOUCH_GAP, rails, into);
+		for (int k = 0; k < near; ++k)
+			if (pool_v3_dot(s[a].vel, into[k]) > POOL_LINK_IMPACT_SPEED)
 				return 1;
-		}
 	}
 	return 0;
 }
 
-void pool_link_touched(pool_sim *sim, int i, double t) {
-	const int c = sim->body[i].cluster;
-	sim->clusters[c].t_next = t;
-	unsettle(sim, c);
+// After an event from outside changed member i's state at t (already its new segment start):
+// keeps it linked and makes its cluster step at t, so no event inside a step is skipped.
+static pool_result touched(pool_link *link, int i, double t) {
+	const int c = link->cluster_of[i];
+	link->clusters[c].t_next = t;
+	unsettle(link, c);
 	// A hit passed on into the cluster (a ball hit into its neighbour or into the rail faster
 	// than the cluster's own forces close a contact): the cluster dissolves and the impulses of
 	// events pass it on, with restitution, where the inelastic step would absorb the bounce; if
 	// the balls press one another again, the trigger links them again. (pool_sim_step reserved
 	// the history for the link_end.)
-	if (hit_inside(sim, c, t)) {
-		int *idx = sim->link_members;
-		const int m = members(sim, c, idx);
-		sim->clusters[c].active = 0;
-		release(sim, idx, m, t);
-		return;
+	if (hit_inside(link, c, t)) {
+		int *idx = link->members;
+		const int m = members(link, c, idx);
+		link->clusters[c].active = 0;
+		return release(link, idx, m, t);
 	}
-	reschedule(sim, c, t);
+	reschedule(link, c, t);
+	return POOL_OK;
 }
 
-void pool_link_left(pool_sim *sim, int i, double t) {
-	const int c = sim->body[i].cluster;
-	sim->body[i].cluster = -1;
+// Member i left play (pocketed, off the table) at t: it leaves its cluster, which steps at t.
+static void left(pool_link *link, int i, double t) {
+	const int c = link->cluster_of[i];
+	link->cluster_of[i] = -1;
 	int any = 0;
-	for (int k = 0; k < sim->n; ++k)
-		any |= sim->body[k].cluster == c;
+	for (int k = 0; k < link->n; ++k)
+		any |= link->cluster_of[k] == c;
 	if (!any) {
-		sim->clusters[c].active = 0;
+		link->clusters[c].active = 0;
 		return;
 	}
-	sim->clusters[c].t_next = t;
-	unsettle(sim, c);
-	reschedule(sim, c, t);
+	link->clusters[c].t_next = t;
+	unsettle(link, c);
+	reschedule(link, c, t);
 }
 
-pool_result pool_sim_link_stats(const pool_sim *sim, pool_link_stats *out) {
-	if (!sim || !out)
-		return POOL_ERR_INVALID_ARGUMENT;
-	*out = sim->link_stats;
+/// m/s: a pair whose centres separate faster than this after a collision parts (the hitter of a
+/// cluster's ball then stays out of the cluster). The contact rule's own threshold for a pair
+/// closing (contact.h), so a pair that does not part is one the rule would see touching or closing.
+#define POOL_PARTING_SPEED POOL_APPROACH_EPS
+
+// The two balls of s[0..1] (just after their collision) separate faster than POOL_PARTING_SPEED.
+static int parting(const pool_ball_state *s) {
+	const pool_vec3 d = pool_v3_sub(s[1].pos, s[0].pos);
+	const double dist = pool_v3_len(d);
+	return dist > 0.0 && -pool_closing_speed(s[0].pos, s[0].vel, s[1].pos, s[1].vel) > POOL_PARTING_SPEED;
+}
+
+int pool_link_take_pressed(pool_link *link, pool_event_type type, const int *inv, const pool_ball_state *s, int m,
+                           double t, pool_result *result) {
+	if (!(type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pool_link_pressed_pair(link, s))))
+		return 0;
+	const int c0 = link->cluster_of[inv[0]];
+	if (c0 >= 0 && (m == 1 || c0 == link->cluster_of[inv[1]]))
+		return 0;
+	*result = link_begin(link, inv, m, t);
+	return 1;
+}
+
+void pool_link_keep_linked(const pool_link *link, const int *inv, pool_ball_state *s, int m) {
+	for (int k = 0; k < m; ++k)
+		if (link->cluster_of[inv[k]] >= 0 && in_play(s[k].motion))
+			s[k].motion = POOL_MOTION_LINKED;
+}
+
+pool_result pool_link_after_event(pool_link *link, pool_event_type type, pool_rail rail, const int *inv,
+                                  const pool_ball_state *s, int m, double t) {
+	// A ball that hit a cluster's ball and does not part from it joins the cluster: if the
+	// cluster presses it, the next step holds it (rather than impulses at one instant, each
+	// after a whole step's forces); if not, the step finds it loose and it leaves. One that
+	// parts (Petit's law sends it off at e times its approach) stays out: the cluster's next
+	// step would only find it loose, at the price of an LCP with all its contacts (a break's
+	// balls running into a cluster in the rack: 8 balls, 21 contacts), and should the cluster
+	// catch it again, the trigger links the pair.
+	if (type == POOL_EVENT_BALL_BALL && in_play(s[0].motion) && in_play(s[1].motion) &&
+	    (link->cluster_of[inv[0]] >= 0) != (link->cluster_of[inv[1]] >= 0) && !parting(s)) {
+		const int member = link->cluster_of[inv[0]] >= 0 ? 0 : 1;
+		join(link, inv[1 - member], link->cluster_of[inv[member]], t);
+	}
+	// The cluster of a ball the event changed steps now: no event inside a step is skipped.
+	for (int k = 0; k < m; ++k) {
+		if (link->cluster_of[inv[k]] < 0)
+			continue;
+		if (in_play(s[k].motion)) {
+			const pool_result r = touched(link, inv[k], t);
+			if (r)
+				return r;
+		} else {
+			left(link, inv[k], t);
+		}
+	}
+	// The trigger: a pair colliding again and again forms a cluster at t.
+	if (type == POOL_EVENT_BALL_BALL) {
+		const int a = note_collision(link, inv[0], inv[1], t);
+		const int b = note_collision(link, inv[1], inv[0], t);
+		return a || b ? link_begin(link, inv, 2, t) : POOL_OK;
+	}
+	if (type == POOL_EVENT_BALL_CUSHION && note_collision(link, inv[0], -2 - (int)rail, t))
+		return link_begin(link, inv, 1, t);
 	return POOL_OK;
 }

@@ -1,43 +1,146 @@
-// LINK clusters in the world (docs/physics.md "LINK"). Where pairwise impulses break down (a ball
-// pushing another, resting on two, pinned to a rail), the pair's collision history triggers a
-// cluster: the linker and every ball touching and closing on it, transitively; a ball that hits
-// a cluster's ball joins it. The cluster is one body of the schedule: its balls share one step
-// event and, over a step, move uniformly with the step's mean velocities (link_step.h), so the
-// exact state at any instant stays known and the balls outside keep predicting contacts against
-// them. A step ends early when an event from outside reaches one of its balls (the cluster
-// steps again at that instant); steps grow from 1 to 16 ms while the contacts barely act. A ball
-// that nothing presses leaves the cluster and resumes its closed-form state; the cluster
-// dissolves when all of them have.
+// LINK, persistent contact (docs/physics.md "LINK", docs/library.md "Persistent contact"), as a
+// solver with one owner: this module keeps every piece of its state (the clusters, each ball's
+// cluster, the collision streaks of the trigger, the steps' tails, the LCP workspace, the
+// statistics) and the world calls it in three places:
+//   pool_link_take_pressed a contact the impulses cannot hold (pressed, no impulse): a cluster forms;
+//   pool_link_after_event  after an event was applied and recorded: the trigger, adopting a hitter,
+//                          a cluster touched or left by the event;
+//   pool_link_step_event   the schedule's step event of a cluster: one LCP step (link_step.c).
+// It asks the world for nothing but what pool_link_world offers (a ball's state at t, starting a
+// segment, recording an event, re-predicting), so it includes no world internals, and the world
+// finds no cluster logic of its own: calls go one way, as Box2D v3's world calls its solver and
+// the solver keeps its state.
+//
+// A cluster is one body of the schedule: its balls share one step event and, over a step, move
+// uniformly with the step's mean velocities (link_step.h), so the exact state at any instant stays
+// known and the balls outside keep predicting contacts against them. A step ends early when an
+// event from outside reaches one of its balls (the cluster steps again at that instant); steps
+// grow from 1 to 16 ms while the contacts barely act. A ball that nothing presses leaves the
+// cluster and resumes its closed-form state; the cluster dissolves when all of them have.
 #ifndef POOL_LINK_INTERNAL_H
 #define POOL_LINK_INTERNAL_H
 
-#include "world.h"
+#include "link_step.h"
+#include "pool/link.h"
+#include "pool/sim.h"
 
-/// Notes a recorded collision of ball i with `partner` (a ball index, or -2 - rail) at t and
-/// returns 1 when it completes the trigger (POOL_LINK_TRIGGER_COLLISIONS within the window).
-int pool_link_note_collision(pool_sim *sim, int i, int partner, double t);
+/// What LINK may ask of the world it serves; ctx is passed back to every call.
+typedef struct pool_link_world {
+	void *ctx;
+	/// Ball i's state at t (closed form from its current segment; pocketed and off-table balls too).
+	void (*state_at)(void *ctx, int i, double t, pool_ball_state *out);
+	/// Ball i's motion starts over at t in state s (its own next event predicted from there).
+	void (*begin_segment)(void *ctx, int i, const pool_ball_state *s, double t);
+	/// Balls balls[0..m) keep their segments, but their own next events (a cluster's step)
+	/// moved: predicted again, with the contacts of everything they changed.
+	void (*refresh)(void *ctx, const int *balls, int m, double t);
+	/// Balls balls[0..m) started new segments at t: their contacts are predicted again.
+	void (*changed)(void *ctx, const int *balls, int m, double t);
+	/// Records an event at t of balls[0..m) in their current segment-start states.
+	pool_result (*record)(void *ctx, double t, pool_event_type type, pool_pocket pocket, const int *balls, int m);
+	/// Room for `events` more events with `states` more states (POOL_ERR_OUT_OF_MEMORY: none).
+	pool_result (*reserve)(void *ctx, int events, int states);
+} pool_link_world;
 
-/// Forms a cluster at t around the balls seed[0..m) (merging every cluster they touch) and
-/// records link_begin; its first step is at t.
-pool_result pool_link_begin(pool_sim *sim, const int *seed, int m, double t);
+/// Partners a ball remembers for the LINK trigger: a collision streak per recent partner.
+#define POOL_LINK_PARTNERS 4
 
-/// Processes the step event of ball i's cluster at t: one LCP step of the whole cluster, then
-/// link_step (or link_end when it dissolves).
-pool_result pool_link_step_event(pool_sim *sim, int i, double t);
+/// Collisions of a ball with one partner (a ball index, or -2 - rail for a cushion) since t0.
+typedef struct pool_contact_streak {
+	int partner;   ///< -1: unused
+	int count;     ///< at distinct instants since t0
+	int same;      ///< at the instant t_last
+	double t0;     ///< s, the first collision counted
+	double t_last; ///< s, the last one
+} pool_contact_streak;
 
-/// After an event from outside changed member i's state at t (already its new segment start):
-/// keeps it linked and makes its cluster step at t, so no event inside a step is skipped.
-void pool_link_touched(pool_sim *sim, int i, double t);
+/// A cluster: its balls are those whose cluster_of is its index; they share one step event.
+typedef struct pool_cluster {
+	int active;    ///< in use
+	double t_next; ///< s, the cluster's next step (INFINITY while it sleeps)
+	double dt;     ///< s, the length of its current step (POOL_LINK_STEP_TIME ... POOL_LINK_STEP_MAX)
+	int steps;     ///< steps taken
+	int quiet;     ///< the last step found every ball loose: the cluster dissolves at its next
+	               ///< step instead of solving again
+} pool_cluster;
 
-/// Ball i (in play, in no cluster) joins cluster c at t, its state then a linked segment's start.
-void pool_link_adopt(pool_sim *sim, int i, int c, double t);
+/// LINK's whole state, owned by it (the world holds it and passes it to every call).
+typedef struct pool_link {
+	const pool_sim_def *def;   ///< the simulation's (table, parameters, planar or airborne)
+	double dc;                 ///< m, a ball's centre from a nose line at contact on the cloth
+	pool_link_world world;
+	const pool_allocator *alloc;
+	int n, cap;                ///< balls, and the room of the per-ball arrays
+	// Per ball (cap of each):
+	int *cluster_of;           ///< the ball's cluster, or -1
+	int *loose;                ///< the cluster's last step found nothing pressing it: it leaves
+	                           ///< at the next step
+	double *tail;              ///< 6 per ball: velocity (v, w) at the step's end less the
+	                           ///< segment's mean (link_step.h ball_tail); zero after an interruption
+	pool_contact_streak *streak; ///< POOL_LINK_PARTNERS per ball: recent collisions, for the trigger
+	pool_cluster *clusters;    ///< at most one per ball
+	// Scratch of a step (cap of each):
+	pool_ball_state *states;
+	int *members;
+	int *group;
+	pool_ball_state *leaving;  ///< the states loose balls would leave with
+	pool_vec3 *accel;          ///< each ball's acceleration over the step
+	pool_link_workspace ws;    ///< the steps' LCP memory, reused
+	pool_link_stats stats;     ///< this shot's
+	pool_link_step_stats failed_step; ///< the last failed solve (pool_link_failure)
+	int failed_size;           ///< its cluster's balls
+} pool_link;
+
+/// Binds LINK to its simulation's def (kept by address: the world's), allocator and world.
+void pool_link_init(pool_link *link, const pool_sim_def *def, double dc, const pool_allocator *alloc,
+                    const pool_link_world *world);
+
+/// A new shot: no ball, no cluster, no warm start (the same input gives the same bits).
+void pool_link_clear(pool_link *link);
+
+/// Frees LINK's memory.
+void pool_link_free(pool_link *link);
+
+/// Room for `balls` balls; POOL_ERR_OUT_OF_MEMORY leaves LINK as it was.
+pool_result pool_link_reserve(pool_link *link, int balls);
+
+/// Ball i (the next index) is placed: in no cluster, no collision remembered.
+void pool_link_add_ball(pool_link *link, int i);
+
+/// Ball i's cluster, or -1 (inline: the schedule asks it for every pair it predicts).
+static inline int pool_link_cluster_of(const pool_link *link, int i) { return link->cluster_of[i]; }
+
+/// s, the next step of ball i's cluster (i linked).
+double pool_link_next_step(const pool_link *link, int i);
 
 /// 1 when two touching balls s[0..2) (closed-form states at the contact) are pressed together:
 /// their normal approach acceleration, the difference of their accelerations along the normal
 /// less the curvature of their relative path (|v_t|^2 / 2R parts them), is positive.
-int pool_link_pressed_pair(const pool_sim *sim, const pool_ball_state *s);
+int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s);
 
-/// Member i left play (pocketed, off the table) at t: it leaves its cluster, which steps at t.
-void pool_link_left(pool_sim *sim, int i, double t);
+/// An event of the balls inv[0..m) (evolved to t, in s[0..m)) found them touching and pressed,
+/// and Petit's law gave no impulse: resting contact the impulses cannot hold. Returns 1 when
+/// LINK takes it (forms a cluster at t, *result its outcome), 0 when it is not LINK's (the
+/// balls are in one cluster already, or a ball pair is not pressed).
+int pool_link_take_pressed(pool_link *link, pool_event_type type, const int *inv, const pool_ball_state *s, int m,
+                           double t, pool_result *result);
+
+/// Marks the after-states s[0..m) of an event of the balls inv[0..m): a ball LINK holds stays
+/// linked (its state's motion is POOL_MOTION_LINKED).
+void pool_link_keep_linked(const pool_link *link, const int *inv, pool_ball_state *s, int m);
+
+/// After an event of type `type` (rail: a cushion's) at t changed the balls inv[0..m) (their
+/// after-states s[0..m), recorded): a hitter that does not part from a cluster's ball joins it,
+/// a cluster touched or left steps at t, and the trigger may form a cluster.
+pool_result pool_link_after_event(pool_link *link, pool_event_type type, pool_rail rail, const int *inv,
+                                  const pool_ball_state *s, int m, double t);
+
+/// The step event of ball i's cluster at t: one LCP step of the whole cluster, then link_step
+/// (or link_end when it dissolves). POOL_ERR_INTERNAL when the LCP cannot be solved
+/// (pool_link_failure says how), POOL_ERR_OUT_OF_MEMORY when the workspace cannot grow.
+pool_result pool_link_step_event(pool_link *link, int i, double t);
+
+/// What the last failed step was: its solve's residual and contacts, and its cluster's balls.
+void pool_link_failure(const pool_link *link, double *residual, int *balls, int *contacts);
 
 #endif

@@ -13,6 +13,8 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	const pool_params *p = &sim->def.params;
 	pool_body *b = &sim->body[i];
 	sim->cur[i] = *s;
+	// A pocketed or off-table ball is out of play for good: no event of its own, no contact.
+	b->active = s->motion != POOL_MOTION_POCKETED && s->motion != POOL_MOTION_OFF_TABLE;
 	pool_segment_begin(&b->seg, p, s, t);
 	b->own_time = INFINITY;
 	b->own_kind = POOL_EVENT_SPIN_STOP;
@@ -23,7 +25,7 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	if (s->motion == POOL_MOTION_LINKED) {
 		// The cluster's step, or a pocket first: the step's LCP holds a linked ball off the
 		// rails except inside a pocket mouth, where it crosses the contact line and falls.
-		b->own_time = sim->clusters[b->cluster].t_next;
+		b->own_time = pool_link_next_step(&sim->link, i);
 		b->own_kind = POOL_EVENT_LINK_STEP;
 		pool_rail rail;
 		pool_pocket pocket;
@@ -85,12 +87,13 @@ static void repredict(pool_sim *sim, int i, double now) {
 		const pool_vec3 ai = bi->seg.acc;
 		const int mi = bi->seg.model->translating;
 		const double horizon_i = fmin(bi->own_time, sim->def.max_time);
+		const int cluster_i = pool_link_cluster_of(&sim->link, i);
 		for (int j = 0; j < sim->n; ++j) {
 			const pool_body *bj = &sim->body[j];
 			if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
 				continue;
 			// Contacts inside a cluster are its LCP's (link.c), not events.
-			if (bi->cluster >= 0 && bi->cluster == bj->cluster)
+			if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
 				continue;
 			// A contact after the best event so far cannot be the earliest: shrink the window.
 			const double T = earlier(earlier(horizon_i, bj->own_time), best.time) - now;
@@ -133,6 +136,15 @@ void pool_schedule_predict_all(pool_sim *sim) {
 	for (int i = 0; i < sim->n; ++i)
 		repredict(sim, i, sim->time);
 	sim->predicted = 1;
+}
+
+void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now) {
+	for (int k = 0; k < m; ++k) {
+		const int i = inv[k];
+		const pool_ball_state s = sim->cur[i];
+		pool_schedule_begin_segment(sim, i, &s, sim->body[i].seg.t0);
+	}
+	pool_schedule_after_event(sim, inv, m, now);
 }
 
 void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now) {

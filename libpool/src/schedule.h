@@ -16,6 +16,10 @@ void pool_schedule_predict_all(pool_sim *sim);
 /// pending event involved one of them.
 void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now);
 
+/// The bodies inv[0..m) keep their segments but their own next events moved (a LINK cluster's
+/// step): predicted again, then as pool_schedule_after_event.
+void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now);
+
 /// Slot of the earliest pending event (sim->n > 0).
 static inline int pool_schedule_next(const pool_sim *sim) { return pool_event_queue_top(&sim->queue); }
 

@@ -23,7 +23,7 @@
 #include "contact.h"
 #include "error.h"
 #include "handlers.h"
-#include "link.h"
+#include "memory.h"
 #include "models.h"
 #include "motion.h"
 #include "pool/sim.h"
@@ -38,12 +38,6 @@ static void *default_alloc(size_t size, void *context) {
 static void default_free(void *memory, void *context) {
 	(void)context;
 	free(memory);
-}
-
-static void *mem_alloc(const pool_allocator *a, size_t size) { return a->alloc(size ? size : 1, a->context); }
-static void mem_free(const pool_allocator *a, void *p) {
-	if (p)
-		a->free(p, a->context);
 }
 
 pool_sim_def pool_default_sim_def(void) {
@@ -81,10 +75,48 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 	return pool_error_ok(error);
 }
 
+// ---- what LINK may ask of the world (link.h)
+
+static void link_state_at(void *ctx, int i, double t, pool_ball_state *out) { pool_world_state_now(ctx, i, t, out); }
+
+static void link_begin_segment(void *ctx, int i, const pool_ball_state *s, double t) {
+	pool_schedule_begin_segment(ctx, i, s, t);
+}
+
+static void link_refresh(void *ctx, const int *balls, int m, double t) { pool_schedule_refresh(ctx, balls, m, t); }
+
+static void link_changed(void *ctx, const int *balls, int m, double t) { pool_schedule_after_event(ctx, balls, m, t); }
+
+// Records an event of balls[0..m) at t in their segment-start states. The callers reserve the
+// room first (pool_sim_step for an event and the LINK events it brings); should that fall short
+// and the history not grow, the shot fails rather than write past its arrays.
+static pool_result record(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
+                          const int *balls, int m) {
+	const pool_result r = pool_history_record(&sim->history, &sim->alloc, t, type, rail, pocket, balls, m, sim->cur);
+	if (r)
+		sim->failed = r;
+	return r;
+}
+
+static pool_result link_record(void *ctx, double t, pool_event_type type, pool_pocket pocket, const int *balls, int m) {
+	return record(ctx, t, type, POOL_RAIL_NONE, pocket, balls, m);
+}
+
+static pool_result link_reserve(void *ctx, int events, int states) {
+	pool_sim *sim = ctx;
+	return pool_history_reserve(&sim->history, &sim->alloc, events, states);
+}
+
+static void bind_link(pool_sim *sim) {
+	const pool_link_world world = {sim,         link_state_at, link_begin_segment, link_refresh,
+	                               link_changed, link_record,  link_reserve};
+	pool_link_init(&sim->link, &sim->def, sim->dc, &sim->alloc, &world);
+}
+
+// ---- lifetime
+
 static void clear(pool_sim *sim) {
 	sim->n = 0;
-	sim->n_events = 0;
-	sim->n_states = 0;
 	sim->time = 0.0;
 	sim->processed = 0.0;
 	sim->stop = POOL_STOP_NONE;
@@ -92,8 +124,9 @@ static void clear(pool_sim *sim) {
 	sim->started = 0;
 	sim->noop_streak = 0;
 	sim->failed = POOL_OK;
-	memset(&sim->link_stats, 0, sizeof sim->link_stats);
-	pool_link_bases_clear(&sim->link_ws.bases); // no warm start from another shot: the same input, the same bits
+	sim->last_error.message[0] = '\0';
+	pool_history_clear(&sim->history);
+	pool_link_clear(&sim->link);
 }
 
 static void set_def(pool_sim *sim, const pool_sim_def *def) {
@@ -101,6 +134,7 @@ static void set_def(pool_sim *sim, const pool_sim_def *def) {
 	sim->def = *def;
 	sim->def.allocator = keep; // buffers stay with the allocator that made them
 	sim->dc = pool_table_contact_distance(&def->table, def->params.ball_radius);
+	bind_link(sim);
 }
 
 pool_result pool_sim_create(const pool_sim_def *def, pool_sim **out, pool_error *error) {
@@ -116,7 +150,7 @@ pool_result pool_sim_create(const pool_sim_def *def, pool_sim **out, pool_error 
 		a.free = default_free;
 		a.context = NULL;
 	}
-	pool_sim *sim = mem_alloc(&a, sizeof *sim);
+	pool_sim *sim = pool_mem_alloc(&a, sizeof *sim);
 	if (!sim)
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "sim: out of memory");
 	memset(sim, 0, sizeof *sim);
@@ -131,13 +165,12 @@ void pool_sim_destroy(pool_sim *sim) {
 	if (!sim)
 		return;
 	const pool_allocator a = sim->alloc;
-	void *arrays[] = {sim->cur,    sim->body,        sim->keys,        sim->heap,        sim->hpos,
-	                  sim->work,   sim->clusters,    sim->link_states, sim->link_members, sim->events,
-	                  sim->states, sim->state_time,  sim->state_prev, sim->link_leaving, sim->link_accel};
-	pool_link_workspace_free(&sim->link_ws, &a);
+	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work};
+	pool_link_free(&sim->link);
+	pool_history_free(&sim->history, &a);
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
-		mem_free(&a, arrays[i]);
-	mem_free(&a, sim);
+		pool_mem_free(&a, arrays[i]);
+	pool_mem_free(&a, sim);
 }
 
 pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *error) {
@@ -153,78 +186,20 @@ pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *e
 	return pool_error_ok(error);
 }
 
-// Replaces *arrays[i] (each elems[i] bytes per element, `used` of them live) by arrays of
-// new_cap elements; all or nothing, so a failed allocation leaves the simulation intact.
-static pool_result grow_arrays(pool_sim *sim, void **arrays[], const size_t elems[], int count, int used, int new_cap) {
-	void *fresh[16];
-	for (int i = 0; i < count; ++i) {
-		fresh[i] = mem_alloc(&sim->alloc, elems[i] * (size_t)new_cap);
-		if (!fresh[i]) {
-			for (int j = 0; j < i; ++j)
-				mem_free(&sim->alloc, fresh[j]);
-			return POOL_ERR_OUT_OF_MEMORY;
-		}
-	}
-	for (int i = 0; i < count; ++i) {
-		if (*arrays[i] && used > 0)
-			memcpy(fresh[i], *arrays[i], elems[i] * (size_t)used);
-		mem_free(&sim->alloc, *arrays[i]);
-		*arrays[i] = fresh[i];
-	}
-	return POOL_OK;
-}
-
-static int next_cap(int cap, int need) {
-	int c = cap > 0 ? cap : 16;
-	while (c < need)
-		c *= 2;
-	return c;
-}
-
 static pool_result reserve_balls(pool_sim *sim, int need) {
-	if (need <= sim->cap_balls)
-		return POOL_OK;
-	int cap = next_cap(sim->cap_balls, need);
-	void **arrays[] = {(void **)&sim->cur,      (void **)&sim->body,        (void **)&sim->keys,
-	                   (void **)&sim->heap,     (void **)&sim->hpos,        (void **)&sim->work,
-	                   (void **)&sim->clusters, (void **)&sim->link_states, (void **)&sim->link_members,
-	                   (void **)&sim->link_leaving, (void **)&sim->link_accel};
-	const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body),       sizeof(pool_event_key),
-	                        sizeof(int),             sizeof(int),             sizeof(int),
-	                        sizeof(pool_cluster),    sizeof(pool_ball_state), sizeof(int),
-	                        sizeof(pool_ball_state), sizeof(pool_vec3)};
-	pool_result r = grow_arrays(sim, arrays, elems, 11, sim->n, cap);
-	if (r == POOL_OK)
+	if (need > sim->cap_balls) {
+		const int cap = pool_mem_next_cap(sim->cap_balls, need);
+		void **arrays[] = {(void **)&sim->cur,  (void **)&sim->body, (void **)&sim->keys,
+		                   (void **)&sim->heap, (void **)&sim->hpos, (void **)&sim->work};
+		const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body), sizeof(pool_event_key),
+		                        sizeof(int),             sizeof(int),       sizeof(int)};
+		if (pool_mem_grow(&sim->alloc, arrays, elems, 6, sim->n, cap))
+			return POOL_ERR_OUT_OF_MEMORY;
 		sim->cap_balls = cap;
-	return r;
-}
-
-pool_result pool_world_reserve_history(pool_sim *sim, int events, int states) {
-	if (sim->n_events + events > sim->cap_events) {
-		int cap = next_cap(sim->cap_events, sim->n_events + events);
-		void **arrays[] = {(void **)&sim->events};
-		const size_t elems[] = {sizeof(pool_event)};
-		if (grow_arrays(sim, arrays, elems, 1, sim->n_events, cap))
-			return POOL_ERR_OUT_OF_MEMORY;
-		sim->cap_events = cap;
 	}
-	if (sim->n_states + states > sim->cap_states) {
-		int cap = next_cap(sim->cap_states, sim->n_states + states);
-		void **arrays[] = {(void **)&sim->states, (void **)&sim->state_time, (void **)&sim->state_prev};
-		const size_t elems[] = {sizeof(pool_ball_state), sizeof(double), sizeof(int)};
-		if (grow_arrays(sim, arrays, elems, 3, sim->n_states, cap))
-			return POOL_ERR_OUT_OF_MEMORY;
-		sim->cap_states = cap;
-	}
+	if (pool_history_reserve_balls(&sim->history, &sim->alloc, need, sim->n) || pool_link_reserve(&sim->link, need))
+		return POOL_ERR_OUT_OF_MEMORY;
 	return POOL_OK;
-}
-
-static void record_state(pool_sim *sim, int i, double t) {
-	int k = sim->n_states++;
-	sim->states[k] = sim->cur[i];
-	sim->state_time[k] = t;
-	sim->state_prev[k] = sim->body[i].hist;
-	sim->body[i].hist = k;
 }
 
 void pool_world_state_now(const pool_sim *sim, int i, double t, pool_ball_state *out) {
@@ -286,7 +261,7 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
 			                      (int)sim->cur[j].id, 2.0 * R - d);
 	}
-	if (reserve_balls(sim, idx + 1) || pool_world_reserve_history(sim, 0, 1))
+	if (reserve_balls(sim, idx + 1) || pool_history_reserve(&sim->history, &sim->alloc, 0, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "balls[%d]: out of memory", idx);
 	pool_ball_state s = *ball;
 	if (pool_world_planar(sim))
@@ -297,37 +272,12 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	pool_body *b = &sim->body[idx];
 	memset(b, 0, sizeof *b);
 	b->active = 1;
-	b->hist = -1;
 	b->partner = -1;
-	b->cluster = -1;
-	for (int k = 0; k < POOL_LINK_PARTNERS; ++k)
-		b->streak[k].partner = -1;
-	sim->clusters[idx].active = 0;
+	pool_link_add_ball(&sim->link, idx);
 	pool_schedule_begin_segment(sim, idx, &s, sim->time);
-	record_state(sim, idx, sim->time);
+	pool_history_place(&sim->history, idx, &s, sim->time);
 	sim->predicted = 0;
 	return pool_error_ok(error);
-}
-
-void pool_world_record_event(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
-                             const int *inv, int m) {
-	// The callers reserve the room first (pool_sim_step for an event and the LINK events it
-	// brings); should that count ever fall short, the history grows here, and if it cannot, the
-	// shot fails rather than write past its arrays.
-	if (pool_world_reserve_history(sim, 1, m)) {
-		sim->failed = POOL_ERR_OUT_OF_MEMORY;
-		return;
-	}
-	pool_event *e = &sim->events[sim->n_events++];
-	memset(e, 0, sizeof *e); // padding too: event lists compare bit for bit
-	e->time = t;
-	e->type = type;
-	e->rail = rail;
-	e->pocket = pocket;
-	e->ball_count = m;
-	e->first_state = sim->n_states;
-	for (int k = 0; k < m; ++k)
-		record_state(sim, inv[k], t);
 }
 
 pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *strike, pool_error *error) {
@@ -345,7 +295,7 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 	pool_world_state_now(sim, i, now, &s);
 	if (!sim->body[i].active || (s.motion != POOL_MOTION_STATIONARY && s.motion != POOL_MOTION_SPINNING))
 		return pool_error_set(error, POOL_ERR_STATE, "strike.ball: ball %d is not at rest on the cloth", (int)ball_id);
-	if (pool_world_reserve_history(sim, 1, 1))
+	if (pool_history_reserve(&sim->history, &sim->alloc, 1, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "strike: out of memory");
 	s.vel = v;
 	s.omega = pool_v3_add(s.omega, w);
@@ -353,7 +303,7 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 	// ball into the cloth (v_z < 0): a ball_table impact at this very instant (jump and massé).
 	pool_motion_after_impulse(&sim->def, &s);
 	pool_schedule_begin_segment(sim, i, &s, now);
-	pool_world_record_event(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, &i, 1);
+	record(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, &i, 1);
 	sim->time = now;
 	sim->processed = now;
 	sim->started = 1;
@@ -366,31 +316,6 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 /// Consecutive no-op contacts (grazes) skipped before one is recorded anyway.
 #define NOOP_LIMIT 8
 
-// After a recorded collision: the LINK trigger (link.h), which may start a cluster at `now`.
-static pool_result note_collision(pool_sim *sim, pool_event_type type, const int *inv, pool_rail rail, double now) {
-	if (type == POOL_EVENT_BALL_BALL) {
-		const int a = pool_link_note_collision(sim, inv[0], inv[1], now);
-		const int b = pool_link_note_collision(sim, inv[1], inv[0], now);
-		return a || b ? pool_link_begin(sim, inv, 2, now) : POOL_OK;
-	}
-	if (type == POOL_EVENT_BALL_CUSHION && pool_link_note_collision(sim, inv[0], -2 - (int)rail, now))
-		return pool_link_begin(sim, inv, 1, now);
-	return POOL_OK;
-}
-
-/// m/s: a pair whose centres separate faster than this after a collision parts (world.c: the
-/// hitter of a cluster's ball then stays out of the cluster). The contact rule's own threshold
-/// for a pair closing (contact.h), so a pair that does not part is one the rule would see
-/// touching or closing.
-#define POOL_PARTING_SPEED POOL_APPROACH_EPS
-
-// The two balls of s[0..1] (just after their collision) separate faster than POOL_PARTING_SPEED.
-static int parting(const pool_ball_state *s) {
-	const pool_vec3 d = pool_v3_sub(s[1].pos, s[0].pos);
-	const double dist = pool_v3_len(d);
-	return dist > 0.0 && -pool_closing_speed(s[0].pos, s[0].vel, s[1].pos, s[1].vel) > POOL_PARTING_SPEED;
-}
-
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.
 static pool_result process(pool_sim *sim, int slot) {
 	const pool_event_key key = sim->keys[slot];
@@ -398,7 +323,7 @@ static pool_result process(pool_sim *sim, int slot) {
 	pool_body *b = &sim->body[slot];
 	const pool_event_type type = (pool_event_type)key.kind;
 	if (type == POOL_EVENT_LINK_STEP) {
-		const pool_result r = pool_link_step_event(sim, slot, now);
+		const pool_result r = pool_link_step_event(&sim->link, slot, now);
 		sim->time = now;
 		sim->processed = now;
 		return r;
@@ -441,12 +366,12 @@ static pool_result process(pool_sim *sim, int slot) {
 	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
 	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
 	// persistent contact by definition: LINK takes it at once (no event of its own is recorded).
-	if (unchanged && (type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pool_link_pressed_pair(sim, s))) &&
-	    !(sim->body[inv[0]].cluster >= 0 && (count == 1 || sim->body[inv[0]].cluster == sim->body[inv[1]].cluster))) {
+	pool_result taken = POOL_OK;
+	if (unchanged && pool_link_take_pressed(&sim->link, type, inv, s, count, now, &taken)) {
 		sim->noop_streak = 0;
 		sim->time = now;
 		sim->processed = now;
-		return pool_link_begin(sim, inv, count, now);
+		return taken;
 	}
 	if (type == POOL_EVENT_BALL_BALL && unchanged && sim->noop_streak < NOOP_LIMIT) {
 		sim->noop_streak++;
@@ -456,42 +381,15 @@ static pool_result process(pool_sim *sim, int slot) {
 		return POOL_OK;
 	}
 	sim->noop_streak = 0;
-	const int out_of_play = s[0].motion == POOL_MOTION_POCKETED || s[0].motion == POOL_MOTION_OFF_TABLE;
-	if (out_of_play)
-		b->active = 0;
-	// A cluster's ball hit from outside stays linked, with the impulse's velocities.
-	for (int k = 0; k < count; ++k)
-		if (sim->body[inv[k]].cluster >= 0 && sim->body[inv[k]].active)
-			s[k].motion = POOL_MOTION_LINKED;
+	pool_link_keep_linked(&sim->link, inv, s, count);
 	for (int k = 0; k < count; ++k)
 		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
 	// A pocket event names its pocket, not the rail whose mouth it was.
-	pool_world_record_event(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
+	record(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
-	// A ball that hit a cluster's ball and does not part from it joins the cluster: if the
-	// cluster presses it, the next step holds it (rather than impulses at one instant, each
-	// after a whole step's forces); if not, the step finds it loose and it leaves. One that
-	// parts (Petit's law sends it off at e times its approach) stays out: the cluster's next
-	// step would only find it loose, at the price of an LCP with all its contacts (a break's
-	// balls running into a cluster in the rack: 8 balls, 21 contacts), and should the cluster
-	// catch it again, the trigger links the pair.
-	if (type == POOL_EVENT_BALL_BALL && sim->body[inv[0]].active && sim->body[inv[1]].active &&
-	    (sim->body[inv[0]].cluster >= 0) != (sim->body[inv[1]].cluster >= 0) && !parting(s)) {
-		const int member = sim->body[inv[0]].cluster >= 0 ? 0 : 1;
-		pool_link_adopt(sim, inv[1 - member], sim->body[inv[member]].cluster, now);
-	}
-	// The cluster of a ball the event changed steps now: no event inside a step is skipped.
-	for (int k = 0; k < count; ++k) {
-		if (sim->body[inv[k]].cluster < 0)
-			continue;
-		if (sim->body[inv[k]].active)
-			pool_link_touched(sim, inv[k], now);
-		else
-			pool_link_left(sim, inv[k], now);
-	}
-	return note_collision(sim, type, inv, ctx.rail, now);
+	return pool_link_after_event(&sim->link, type, ctx.rail, inv, s, count, now);
 }
 
 int pool_sim_step(pool_sim *sim) {
@@ -516,7 +414,7 @@ int pool_sim_step(pool_sim *sim) {
 		sim->processed = fmax(sim->processed, sim->def.max_time);
 		return 0;
 	}
-	if (sim->n_events >= sim->def.max_events) {
+	if (sim->history.n_events >= sim->def.max_events) {
 		sim->stop = POOL_STOP_MAX_EVENTS;
 		return 0;
 	}
@@ -524,7 +422,7 @@ int pool_sim_step(pool_sim *sim) {
 	// a collision between two clusters' balls dissolves both (two link_end) and may start a
 	// cluster (link_begin); a step releases its loose balls (link_end) and records itself. So
 	// nothing past this point runs out of memory but a link step's LCP workspace.
-	if (pool_world_reserve_history(sim, 4, 2 + 3 * sim->n))
+	if (pool_history_reserve(&sim->history, &sim->alloc, 4, 2 + 3 * sim->n))
 		return POOL_ERR_OUT_OF_MEMORY;
 	sim->started = 1;
 	// A failed link step (its LCP unsolved, or out of memory) ends the shot with that error:
@@ -589,24 +487,26 @@ pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *ou
 		return POOL_ERR_INVALID_ARGUMENT;
 	if (t > sim->processed)
 		return POOL_ERR_STATE;
-	for (int i = 0; i < sim->n; ++i) {
-		int k = sim->body[i].hist;
-		while (sim->state_time[k] > t && sim->state_prev[k] >= 0)
-			k = sim->state_prev[k];
-		pool_motion_evolve(&sim->def.params, &sim->states[k], t - sim->state_time[k], &out[i]);
-	}
+	pool_history_state_at(&sim->history, &sim->def.params, sim->n, t, out);
 	return POOL_OK;
 }
 
 const pool_event *pool_sim_events(const pool_sim *sim, int *count) {
 	if (count)
-		*count = sim ? sim->n_events : 0;
-	return sim ? sim->events : NULL;
+		*count = sim ? sim->history.n_events : 0;
+	return sim ? sim->history.events : NULL;
 }
 
 const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_event *event) {
-	if (!sim || !event || event->first_state < 0 || event->first_state >= sim->n_states)
+	if (!sim || !event || event->first_state < 0 || event->first_state >= sim->history.n_states)
 		return NULL;
-	return &sim->states[event->first_state];
+	return &sim->history.states[event->first_state];
 }
 
+
+pool_result pool_sim_link_stats(const pool_sim *sim, pool_link_stats *out) {
+	if (!sim || !out)
+		return POOL_ERR_INVALID_ARGUMENT;
+	*out = sim->link.stats;
+	return POOL_OK;
+}
