@@ -5,11 +5,17 @@
 #include "schedule.h"
 
 #include <math.h>
+#ifdef POOL_BROADPHASE_VERIFY
+#include <stdlib.h>
+#include <string.h>
+#endif
 
+#include "broadphase.h"
 #include "predict.h"
 #include "vec3.h"
 
-void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
+// Starts body i's segment and finds its own next event (pool_schedule_begin_segment).
+static void begin_own(pool_sim *sim, int i, const pool_ball_state *s, double t) {
 	const pool_params *p = &sim->def.params;
 	pool_body *b = &sim->body[i];
 	sim->cur[i] = *s;
@@ -69,59 +75,103 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	b->own_kind = kind;
 }
 
+void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
+	begin_own(sim, i, s, t);
+	// The broadphase files the segment's reach up to its own next event: no pair search looks
+	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
+	// Before the shot's first prediction (balls being added) there is nothing to file it in yet.
+	const pool_body *b = &sim->body[i];
+	if (sim->predicted)
+		pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, t, fmin(b->own_time, sim->def.max_time));
+}
+
 // The earlier of two event times (never NaN): fmin is a library call, here in the hottest loop.
 static inline double earlier(double a, double b) { return b < a ? b : a; }
 
+// Body i's contact search at `now`: its path and the best event found so far.
+typedef struct search {
+	int i;
+	double now, horizon; // s: the window ends at the earlier of horizon and the other's own event
+	pool_vec3 p, v, a;   // i's path as a polynomial in (t - now)
+	int moving, cluster;
+	pool_event_key best;
+	int partner;
+} search;
+
+// The contact of body i with body j, if it is earlier than the best so far.
+static inline void consider(const pool_sim *sim, search *q, int j) {
+	const int i = q->i;
+	const pool_body *bj = &sim->body[j];
+	if (j == i || !bj->active || (!q->moving && !bj->seg.model->translating))
+		return;
+	// Contacts inside a cluster are its LCP's (link.c), not events.
+	if (q->cluster >= 0 && q->cluster == pool_link_cluster_of(&sim->link, j))
+		return;
+	// A contact after the best event so far cannot be the earliest: shrink the window.
+	const double T = earlier(earlier(q->horizon, bj->own_time), q->best.time) - q->now;
+	if (!(T >= 0.0))
+		return;
+	pool_vec3 pj, vj;
+	pool_segment_path(&bj->seg, q->now - bj->seg.t0, &pj, &vj);
+	// Same operand order whichever body predicts, so both get the same time.
+	pool_vec3 dp = pool_v3_sub(q->p, pj), dv = pool_v3_sub(q->v, vj), da = pool_v3_scale(pool_v3_sub(q->a, bj->seg.acc), 0.5);
+	if (j < i) {
+		dp = pool_v3_scale(dp, -1.0);
+		dv = pool_v3_scale(dv, -1.0);
+		da = pool_v3_scale(da, -1.0);
+	}
+	const double R = sim->def.params.ball_radius;
+	if (pool_predict_pair_out_of_reach(dp, dv, da, R, T))
+		return;
+	const double tau = pool_predict_ball_ball(dp, dv, da, R, T);
+	if (!(tau <= T))
+		return;
+	const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
+	const pool_event_key k = {q->now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
+	if (pool_event_key_cmp(&k, &q->best) < 0) {
+		q->best = k;
+		q->partner = j;
+	}
+}
+
 // Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
 static void repredict(pool_sim *sim, int i, double now) {
-	const pool_params *p = &sim->def.params;
 	pool_body *bi = &sim->body[i];
-	pool_event_key best = {INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
-	bi->partner = -1;
+	search q = {.i = i, .now = now, .partner = -1};
+	q.best = (pool_event_key){INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
 	if (bi->active) {
-		best.time = bi->own_time;
-		best.kind = (int)bi->own_kind;
+		q.best.time = bi->own_time;
+		q.best.kind = (int)bi->own_kind;
 		// Both paths as polynomials in (t - now), from the segments' own polynomial.
-		pool_vec3 pi, vi;
-		pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
-		const pool_vec3 ai = bi->seg.acc;
-		const int mi = bi->seg.model->translating;
-		const double horizon_i = fmin(bi->own_time, sim->def.max_time);
-		const int cluster_i = pool_link_cluster_of(&sim->link, i);
-		for (int j = 0; j < sim->n; ++j) {
-			const pool_body *bj = &sim->body[j];
-			if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
-				continue;
-			// Contacts inside a cluster are its LCP's (link.c), not events.
-			if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
-				continue;
-			// A contact after the best event so far cannot be the earliest: shrink the window.
-			const double T = earlier(earlier(horizon_i, bj->own_time), best.time) - now;
-			if (!(T >= 0.0))
-				continue;
-			pool_vec3 pj, vj;
-			pool_segment_path(&bj->seg, now - bj->seg.t0, &pj, &vj);
-			// Same operand order whichever body predicts, so both get the same time.
-			pool_vec3 dp = pool_v3_sub(pi, pj), dv = pool_v3_sub(vi, vj), da = pool_v3_scale(pool_v3_sub(ai, bj->seg.acc), 0.5);
-			if (j < i) {
-				dp = pool_v3_scale(dp, -1.0);
-				dv = pool_v3_scale(dv, -1.0);
-				da = pool_v3_scale(da, -1.0);
-			}
-			if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
-				continue;
-			const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
-			if (!(tau <= T))
-				continue;
-			const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
-			const pool_event_key k = {now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
-			if (pool_event_key_cmp(&k, &best) < 0) {
-				best = k;
-				bi->partner = j;
-			}
+		pool_segment_path(&bi->seg, now - bi->seg.t0, &q.p, &q.v);
+		q.a = bi->seg.acc;
+		q.moving = bi->seg.model->translating;
+		q.horizon = fmin(bi->own_time, sim->def.max_time);
+		q.cluster = pool_link_cluster_of(&sim->link, i);
+		// The same pairs in the same order either way: the broadphase only leaves out bodies
+		// that cannot come within reach over the window (broadphase.h).
+		if (sim->broad.on) {
+#ifdef POOL_BROADPHASE_VERIFY
+			search all = q;
+			for (int j = 0; j < sim->n; ++j)
+				consider(sim, &all, j);
+#endif
+			pool_broadphase_query(&sim->broad, i, &bi->seg, now, q.horizon);
+			for (int j = -1; (j = pool_broadphase_next_near(&sim->broad, j)) >= 0;)
+				consider(sim, &q, j);
+#ifdef POOL_BROADPHASE_VERIFY
+			// The verification build: the grid's answer must be the all-pairs one, to the bit.
+			if (memcmp(&all.best, &q.best, sizeof q.best) != 0 || all.partner != q.partner)
+				abort();
+#endif
+		} else {
+			for (int j = 0; j < sim->n; ++j)
+				consider(sim, &q, j);
 		}
 	}
-	pool_event_queue_update(&sim->queue, i, &best);
+	pool_broadphase_repartner(&sim->broad, i, bi->partner, q.partner);
+	bi->partner = q.partner;
+	pool_event_queue_update(&sim->queue, i, &q.best);
 }
 
 void pool_schedule_predict_all(pool_sim *sim) {
@@ -133,9 +183,20 @@ void pool_schedule_predict_all(pool_sim *sim) {
 		sim->body[i].partner = -1;
 	}
 	pool_event_queue_build(&sim->queue, sim->n);
+	if (pool_broadphase_begin(&sim->broad, &sim->alloc, &sim->def.table, sim->def.params.ball_radius, sim->n))
+		for (int i = 0; i < sim->n; ++i) {
+			const pool_body *b = &sim->body[i];
+			pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, b->seg.t0,
+			                      fmin(b->own_time, sim->def.max_time));
+		}
 	for (int i = 0; i < sim->n; ++i)
 		repredict(sim, i, sim->time);
 	sim->predicted = 1;
+}
+
+void pool_schedule_set_broadphase(pool_sim *sim, pool_broadphase_mode mode) {
+	pool_broadphase_set_mode(&sim->broad, mode);
+	sim->predicted = 0; // the next run predicts every body again, with this search
 }
 
 void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now) {
@@ -147,18 +208,47 @@ void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now) {
 	pool_schedule_after_event(sim, inv, m, now);
 }
 
+// Adds body x to the sorted list sim->work[0..*count) unless it is there (marked changed).
+static void enlist(pool_sim *sim, int x, int *count) {
+	if (sim->body[x].changed)
+		return;
+	sim->body[x].changed = 1;
+	int at = (*count)++; // insertion: a handful of bodies
+	for (; at > 0 && sim->work[at - 1] > x; --at)
+		sim->work[at] = sim->work[at - 1];
+	sim->work[at] = x;
+}
+
+// The bodies to predict again after an event of inv[0..m), from the partner lists: those bodies
+// and the ones whose pending contact is with one of them, in index order; their count.
+static int watchers(pool_sim *sim, const int *inv, int m) {
+	int count = 0;
+	for (int k = 0; k < m; ++k) {
+		enlist(sim, inv[k], &count);
+		for (int x = pool_broadphase_watcher(&sim->broad, inv[k]); x >= 0; x = pool_broadphase_next_watcher(&sim->broad, x))
+			enlist(sim, x, &count);
+	}
+	for (int k = 0; k < count; ++k)
+		sim->body[sim->work[k]].changed = 0;
+	return count;
+}
+
 void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now) {
 	// The changed bodies and those whose pending contact was with one of them, in index order.
-	for (int k = 0; k < m; ++k)
-		sim->body[inv[k]].changed = 1;
 	int count = 0;
-	for (int x = 0; x < sim->n; ++x) {
-		const int partner = sim->body[x].partner;
-		if (sim->body[x].changed || (partner >= 0 && sim->body[partner].changed))
-			sim->work[count++] = x;
+	if (sim->broad.watching) {
+		count = watchers(sim, inv, m);
+	} else {
+		for (int k = 0; k < m; ++k)
+			sim->body[inv[k]].changed = 1;
+		for (int x = 0; x < sim->n; ++x) {
+			const int partner = sim->body[x].partner;
+			if (sim->body[x].changed || (partner >= 0 && sim->body[partner].changed))
+				sim->work[count++] = x;
+		}
+		for (int k = 0; k < m; ++k)
+			sim->body[inv[k]].changed = 0;
 	}
-	for (int k = 0; k < m; ++k)
-		sim->body[inv[k]].changed = 0;
 	for (int k = 0; k < count; ++k)
 		repredict(sim, sim->work[k], now);
 }
