@@ -48,9 +48,16 @@ static int run(pool_sim *sim, const shot *s, int *events) {
 	return 0;
 }
 
+// --only: the scenes whose name starts with it (NULL: every scene).
+static const char *only;
+
 // Times `runs` runs over the shot list (cycled); prints median / min per shot and events/s.
-// t holds `runs` doubles (allocated before the memory baseline).
-static int measure(pool_sim *sim, const char *name, const shot *shots, int count, int runs, double *t) {
+// t holds `runs` doubles (allocated before the memory baseline). Not inlined: callgrind's
+// --toggle-collect=measure counts the instructions of the timed runs alone.
+__attribute__((noinline)) static int measure(pool_sim *sim, const char *name, const shot *shots, int count, int runs,
+                                             double *t) {
+	if (only && strncmp(name, only, strlen(only)) != 0)
+		return 0;
 	long events = 0, link_steps = 0;
 	double total = 0.0;
 	for (int r = 0; r < runs; ++r) {
@@ -118,7 +125,7 @@ int main(int argc, char **argv) {
 	int runs = 2000;
 	for (int i = 1; i < argc; ++i) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-			printf("usage: pool-bench-shot [--runs N]\n"
+			printf("usage: pool-bench-shot [--runs N] [--only NAME]\n"
 			       "Times whole shots with libpool, reusing one pool_sim (pool_sim_reset):\n"
 			       "  break-frozen      15-ball rack, gap 0, centre-ball break at 8 m/s\n"
 			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
@@ -130,7 +137,10 @@ int main(int argc, char **argv) {
 			       "  break (airborne)  the 0.1 mm break with the cue elevated 5 deg, airborne motion\n"
 			       "Prints median, minimum and mean time per shot over N runs (default 2000), events\n"
 			       "and LINK steps per shot, events per second, the library's peak heap bytes and allocation count before and after the\n"
-			       "runs (they must not grow), the process's peak resident memory, and the machine.\n");
+			       "runs (they must not grow), the process's peak resident memory, and the machine.\n"
+			       "--only NAME times only the scenes whose printed name starts with NAME (break-frozen,\n"
+			       "post-break, ...): for profiling, e.g. valgrind --tool=callgrind --toggle-collect=measure\n"
+			       "pool-bench-shot --runs 100 --only break-frozen (instructions of the timed runs / 100).\n");
 			return 0;
 		}
 		if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
@@ -139,6 +149,8 @@ int main(int argc, char **argv) {
 				fprintf(stderr, "pool-bench-shot: --runs: must be > 0\n");
 				return 2;
 			}
+		} else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+			only = argv[++i];
 		} else {
 			fprintf(stderr, "pool-bench-shot: unknown argument '%s' (see --help)\n", argv[i]);
 			return 2;

@@ -81,97 +81,98 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
 	// Before the shot's first prediction (balls being added) there is nothing to file it in yet.
 	const pool_body *b = &sim->body[i];
-	if (sim->predicted)
+	if (sim->broad.on && sim->predicted)
 		pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, t, fmin(b->own_time, sim->def.max_time));
 }
 
 // The earlier of two event times (never NaN): fmin is a library call, here in the hottest loop.
 static inline double earlier(double a, double b) { return b < a ? b : a; }
 
-// Body i's contact search at `now`: its path and the best event found so far.
-typedef struct search {
-	int i;
-	double now, horizon; // s: the window ends at the earlier of horizon and the other's own event
-	pool_vec3 p, v, a;   // i's path as a polynomial in (t - now)
-	int moving, cluster;
-	pool_event_key best;
-	int partner;
-} search;
+// The next body to look at after j in a contact search (-1: none): every body in index order,
+// or the broadphase's candidates, also in index order.
+static inline int next_body(pool_sim *sim, int grid, int j) {
+	if (grid)
+		return pool_broadphase_next_near(&sim->broad, j);
+	return j + 1 < sim->n ? j + 1 : -1;
+}
 
-// The contact of body i with body j, if it is earlier than the best so far.
-static inline void consider(const pool_sim *sim, search *q, int j) {
-	const int i = q->i;
-	const pool_body *bj = &sim->body[j];
-	if (j == i || !bj->active || (!q->moving && !bj->seg.model->translating))
-		return;
-	// Contacts inside a cluster are its LCP's (link.c), not events.
-	if (q->cluster >= 0 && q->cluster == pool_link_cluster_of(&sim->link, j))
-		return;
-	// A contact after the best event so far cannot be the earliest: shrink the window.
-	const double T = earlier(earlier(q->horizon, bj->own_time), q->best.time) - q->now;
-	if (!(T >= 0.0))
-		return;
-	pool_vec3 pj, vj;
-	pool_segment_path(&bj->seg, q->now - bj->seg.t0, &pj, &vj);
-	// Same operand order whichever body predicts, so both get the same time.
-	pool_vec3 dp = pool_v3_sub(q->p, pj), dv = pool_v3_sub(q->v, vj), da = pool_v3_scale(pool_v3_sub(q->a, bj->seg.acc), 0.5);
-	if (j < i) {
-		dp = pool_v3_scale(dp, -1.0);
-		dv = pool_v3_scale(dv, -1.0);
-		da = pool_v3_scale(da, -1.0);
+// Body i's earliest contact at `now` with another body, if it comes before *best (its own
+// event): *best becomes it, and the other body is returned (-1: none). grid: only the
+// broadphase's candidates, in index order; else every body. The same pairs in the same order
+// either way: the broadphase only leaves out bodies that cannot come within reach over the
+// window (broadphase.h).
+static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, pool_event_key *best) {
+	const pool_params *p = &sim->def.params;
+	const pool_body *bi = &sim->body[i];
+	int partner = -1;
+	// Both paths as polynomials in (t - now), from the segments' own polynomial.
+	pool_vec3 pi, vi;
+	pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
+	const pool_vec3 ai = bi->seg.acc;
+	const int mi = bi->seg.model->translating;
+	const double horizon_i = fmin(bi->own_time, sim->def.max_time);
+	const int cluster_i = pool_link_cluster_of(&sim->link, i);
+	if (grid)
+		pool_broadphase_query(&sim->broad, i, &bi->seg, now, horizon_i);
+	for (int j = next_body(sim, grid, -1); j >= 0; j = next_body(sim, grid, j)) {
+		const pool_body *bj = &sim->body[j];
+		if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
+			continue;
+		// Contacts inside a cluster are its LCP's (link.c), not events.
+		if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
+			continue;
+		// A contact after the best event so far cannot be the earliest: shrink the window.
+		const double T = earlier(earlier(horizon_i, bj->own_time), best->time) - now;
+		if (!(T >= 0.0))
+			continue;
+		pool_vec3 pj, vj;
+		pool_segment_path(&bj->seg, now - bj->seg.t0, &pj, &vj);
+		// Same operand order whichever body predicts, so both get the same time.
+		pool_vec3 dp = pool_v3_sub(pi, pj), dv = pool_v3_sub(vi, vj), da = pool_v3_scale(pool_v3_sub(ai, bj->seg.acc), 0.5);
+		if (j < i) {
+			dp = pool_v3_scale(dp, -1.0);
+			dv = pool_v3_scale(dv, -1.0);
+			da = pool_v3_scale(da, -1.0);
+		}
+		if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
+			continue;
+		const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
+		if (!(tau <= T))
+			continue;
+		const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
+		const pool_event_key k = {now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
+		if (pool_event_key_cmp(&k, best) < 0) {
+			*best = k;
+			partner = j;
+		}
 	}
-	const double R = sim->def.params.ball_radius;
-	if (pool_predict_pair_out_of_reach(dp, dv, da, R, T))
-		return;
-	const double tau = pool_predict_ball_ball(dp, dv, da, R, T);
-	if (!(tau <= T))
-		return;
-	const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
-	const pool_event_key k = {q->now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
-	if (pool_event_key_cmp(&k, &q->best) < 0) {
-		q->best = k;
-		q->partner = j;
-	}
+	return partner;
 }
 
 // Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
 static void repredict(pool_sim *sim, int i, double now) {
 	pool_body *bi = &sim->body[i];
-	search q = {.i = i, .now = now, .partner = -1};
-	q.best = (pool_event_key){INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
+	pool_event_key best = {INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
+	int partner = -1;
 	if (bi->active) {
-		q.best.time = bi->own_time;
-		q.best.kind = (int)bi->own_kind;
-		// Both paths as polynomials in (t - now), from the segments' own polynomial.
-		pool_segment_path(&bi->seg, now - bi->seg.t0, &q.p, &q.v);
-		q.a = bi->seg.acc;
-		q.moving = bi->seg.model->translating;
-		q.horizon = fmin(bi->own_time, sim->def.max_time);
-		q.cluster = pool_link_cluster_of(&sim->link, i);
-		// The same pairs in the same order either way: the broadphase only leaves out bodies
-		// that cannot come within reach over the window (broadphase.h).
-		if (sim->broad.on) {
+		best.time = bi->own_time;
+		best.kind = (int)bi->own_kind;
+		const int grid = sim->broad.on;
 #ifdef POOL_BROADPHASE_VERIFY
-			search all = q;
-			for (int j = 0; j < sim->n; ++j)
-				consider(sim, &all, j);
+		// The verification build: the grid's answer must be the all-pairs one, to the bit.
+		pool_event_key all = best;
+		const int all_partner = grid ? earliest_contact(sim, i, now, 0, &all) : -1;
+		partner = earliest_contact(sim, i, now, grid, &best);
+		if (grid && (memcmp(&all, &best, sizeof best) != 0 || all_partner != partner))
+			abort();
+#else
+		partner = earliest_contact(sim, i, now, grid, &best);
 #endif
-			pool_broadphase_query(&sim->broad, i, &bi->seg, now, q.horizon);
-			for (int j = -1; (j = pool_broadphase_next_near(&sim->broad, j)) >= 0;)
-				consider(sim, &q, j);
-#ifdef POOL_BROADPHASE_VERIFY
-			// The verification build: the grid's answer must be the all-pairs one, to the bit.
-			if (memcmp(&all.best, &q.best, sizeof q.best) != 0 || all.partner != q.partner)
-				abort();
-#endif
-		} else {
-			for (int j = 0; j < sim->n; ++j)
-				consider(sim, &q, j);
-		}
 	}
-	pool_broadphase_repartner(&sim->broad, i, bi->partner, q.partner);
-	bi->partner = q.partner;
-	pool_event_queue_update(&sim->queue, i, &q.best);
+	if (sim->broad.watching && partner != bi->partner)
+		pool_broadphase_repartner(&sim->broad, i, bi->partner, partner);
+	bi->partner = partner;
+	pool_event_queue_update(&sim->queue, i, &best);
 }
 
 void pool_schedule_predict_all(pool_sim *sim) {
