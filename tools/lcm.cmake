@@ -20,7 +20,7 @@ function(pool_lcm_tools_setup)
 
   add_library(pool_lcm_tools STATIC ${dir}/lcm_convert.c ${dir}/lcm_service.c ${dir}/sim_publish.c)
   target_include_directories(pool_lcm_tools PUBLIC ${dir})
-  target_link_libraries(pool_lcm_tools PUBLIC pool_lcm_c pool_scenario pool m)
+  target_link_libraries(pool_lcm_tools PUBLIC pool_lcm_c pool_scenario pool_games pool m)
 
   add_executable(pool-shot-server ${dir}/shot_server.c)
   target_link_libraries(pool-shot-server PRIVATE pool_lcm_tools)

@@ -24,6 +24,7 @@
 
 #include "batch_shot.h"
 #include "cli.h"
+#include "game_json.h"
 #include "json_writer.h"
 #include "read_input.h"
 #include "scenario.h"
@@ -66,6 +67,7 @@ typedef struct batch_options {
 	const char *strikes_path;
 	const char *grid_spec;
 	const char *ranges_spec;
+	const char *noise_spec; ///< --noise: a preset or NAME=SD pairs (pool/noise.h)
 	long random_count;
 	long seed;
 	bool have_ball;
@@ -78,14 +80,15 @@ typedef struct batch_options {
 } batch_options;
 
 static const char usage_text[] =
-	"usage: pool-batch LAYOUT.json (--strikes FILE | --grid SPEC | --random N --ranges SPEC\n"
-	"                  [--seed S]) [--ball ID] [--threads N] [--format csv|jsonl] [-o FILE]\n"
-	"                  [--max-input BYTES] [--no-progress]\n"
+	"usage: pool-batch LAYOUT.json (--strikes FILE | --grid SPEC | --random N --ranges SPEC)\n"
+	"                  [--noise NAME|SPEC] [--seed S] [--ball ID] [--threads N]\n"
+	"                  [--format csv|jsonl] [-o FILE] [--max-input BYTES] [--no-progress]\n"
 	"\n"
 	"Simulates many strikes on one layout (a libpool-scenario/1 file; its strike, if any, is the\n"
 	"base strike: parameters a strike does not give are taken from it) on every core, and prints\n"
 	"one row per strike, in input order: the strike, stop reason, event count, first ball hit by\n"
-	"the struck ball, pocketed and off-table balls, final position and state of every ball.\n"
+	"the struck ball, pocketed and off-table balls, final position and state of every ball; with a\n"
+	"\"game\" in the layout, whether the shot was legal, its fouls, outcome, reason and points.\n"
 	"\n"
 	"  --strikes FILE     a CSV file (header naming columns among ball,speed,phi,theta,a,b) or a\n"
 	"                     JSON array of objects with those keys; angles in degrees\n"
@@ -94,8 +97,11 @@ static const char usage_text[] =
 	"                     speed,phi,theta,a,b; the first parameter varies slowest\n"
 	"  --random N         N strikes with each parameter of --ranges drawn uniformly in [LO, HI)\n"
 	"  --ranges SPEC      NAME=LO:HI or NAME=VALUE, comma-separated (with --random)\n"
-	"  --seed S           seed of --random (integer >= 0, default 1); strike i depends only on\n"
-	"                     the seed, i and the ranges\n"
+	"  --noise NAME|SPEC  Gaussian noise on every strike: a preset (none, fastfiz) or NAME=SD\n"
+	"                     pairs, comma-separated, NAME among speed (m/s), phi, theta (degrees),\n"
+	"                     a, b (m); the rows show the strikes as simulated\n"
+	"  --seed S           seed of --random and --noise (integer >= 0, default 1); strike i\n"
+	"                     depends only on the seed, i and the ranges or noise\n"
 	"  --ball ID          struck ball when a strike does not say (default: the layout's strike\n"
 	"                     ball, else the layout's first ball)\n"
 	"  --threads N        worker threads (default: the number of online CPUs)\n"
@@ -529,6 +535,8 @@ typedef struct batch {
 	batch_axis axes[P_COUNT];
 	int naxes;
 	uint64_t seed_state; ///< mixed from --seed
+	bool noisy;          ///< --noise given (and not "none")
+	pool_noise noise;    ///< its standard deviations
 	long n;              ///< shots
 	char **pos_text;     ///< per layout ball, its position as "x,y,z" (NULL: none cached)
 
@@ -543,7 +551,7 @@ typedef struct batch {
 	batch_slot slots[BATCH_WINDOW];
 } batch;
 
-static void shot_strike(const batch *b, long i, batch_strike *s) {
+static void nominal_strike(const batch *b, long i, batch_strike *s) {
 	if (b->o->mode == MODE_LIST) {
 		*s = b->list->items[i];
 		return;
@@ -567,6 +575,20 @@ static void shot_strike(const batch *b, long i, batch_strike *s) {
 		double x = a->lo + (a->hi - a->lo) * u;
 		s->v[a->param] = x < a->hi || a->lo == a->hi ? x : a->lo; // [lo, hi) despite rounding
 	}
+}
+
+/// Strike i as simulated: the nominal one, with --noise's deviates of sample i under --seed.
+static void shot_strike(const batch *b, long i, batch_strike *s) {
+	nominal_strike(b, i, s);
+	if (!b->noisy)
+		return;
+	const pool_batch_strike nominal = {s->ball, s->v[P_SPEED], s->v[P_PHI], s->v[P_THETA], s->v[P_A], s->v[P_B]};
+	const pool_batch_strike noisy = pool_batch_noisy(&nominal, &b->noise, (uint64_t)b->o->seed, (uint64_t)i);
+	s->v[P_SPEED] = noisy.speed;
+	s->v[P_PHI] = noisy.phi;
+	s->v[P_THETA] = noisy.theta;
+	s->v[P_A] = noisy.a;
+	s->v[P_B] = noisy.b;
 }
 
 /// Per-thread state: a simulation reused for every shot and scratch buffers.
@@ -633,6 +655,40 @@ static void put_pos(sbuf *r, const batch *b, int k, const pool_vec3 *pos) {
 }
 
 /// Simulates shot i and returns its row (malloc'd; NULL when out of memory).
+/// The game's cells of a row (CSV: ,legal,fouls,outcome,reason,points; JSON lines: the same keys).
+static void put_game(sbuf *r, bool json, const pool_scenario *layout, const pool_sim *sim) {
+	pool_game_result g;
+	char fouls[128] = "";
+	if (!pool_batch_judge(layout, sim, &g)) { // the parser checked the layout's balls: not expected
+		sb_str(r, json ? ",\"legal\":null,\"fouls\":null,\"outcome\":null,\"reason\":null,\"points\":null"
+		               : ",,,,,");
+		return;
+	}
+	sb_str(r, json ? ",\"legal\":" : ",");
+	sb_str(r, g.legal ? "true" : "false");
+	if (json) {
+		sb_str(r, ",\"fouls\":[");
+		for (int k = 0, first = 1; k < POOL_GAME_FOUL_KINDS; ++k)
+			if (g.fouls & (1u << k)) {
+				sb_str(r, first ? "\"" : ",\"");
+				sb_str(r, pool_game_foul_name(1u << k));
+				sb_str(r, "\"");
+				first = 0;
+			}
+		sb_str(r, "],\"outcome\":\"");
+	} else {
+		pool_game_foul_list(g.fouls, " ", fouls, sizeof fouls);
+		sb_str(r, ",");
+		sb_str(r, fouls);
+		sb_str(r, ",");
+	}
+	sb_str(r, pool_game_outcome_name(g.outcome));
+	sb_str(r, json ? "\",\"reason\":\"" : ",");
+	sb_str(r, pool_game_reason_name(g.reason));
+	sb_str(r, json ? "\",\"points\":" : ",");
+	sb_int(r, g.points);
+}
+
 static char *run_shot(worker *w, long i, bool *internal) {
 	const batch *b = w->b;
 	const pool_scenario *layout = b->layout;
@@ -669,6 +725,8 @@ static char *run_shot(worker *w, long i, bool *internal) {
 		} else {
 			sb_str(r, ",,,,,,");
 			sb_csv_quoted(r, error);
+			if (layout->has_game)
+				sb_str(r, ",,,,,");
 			for (int k = 0; k < n; ++k)
 				sb_str(r, ",,,,");
 		}
@@ -696,7 +754,11 @@ static char *run_shot(worker *w, long i, bool *internal) {
 			if (json)
 				sb_put(r, "]", 1);
 		}
-		sb_str(r, json ? ",\"final\":[" : ","); // CSV: the empty error column
+		if (!json)
+			sb_str(r, ","); // the empty error column
+		if (layout->has_game)
+			put_game(r, json, layout, w->sim);
+		sb_str(r, json ? ",\"final\":[" : "");
 		for (int k = 0; k < n; ++k) {
 			if (json) {
 				sb_str(r, k ? ",{\"id\":" : "{\"id\":");
@@ -765,6 +827,8 @@ static double now_s(void) {
 static void csv_header(sbuf *out, const pool_scenario *layout) {
 	sb_str(out, "shot,ball,speed,phi,theta,a,b,stop_reason,events,end_time,first_hit,pocketed,"
 	            "off_table,error");
+	if (layout->has_game)
+		sb_str(out, ",legal,fouls,outcome,reason,points");
 	static const char *const suffix[] = {"x", "y", "z", "state"};
 	for (int k = 0; k < layout->ball_count; ++k)
 		for (int c = 0; c < 4; ++c) {
@@ -955,6 +1019,8 @@ static int batch_option(void *context, const char *a, const char *v) {
 		return status;
 	} else if (strcmp(a, "--ranges") == 0) {
 		o->ranges_spec = v;
+	} else if (strcmp(a, "--noise") == 0) {
+		o->noise_spec = v;
 	} else if (strcmp(a, "--seed") == 0) {
 		bp->have_seed = true;
 		if (!pool_cli_parse_count(v, &o->seed))
@@ -986,7 +1052,8 @@ static int parse_options(int argc, char **argv, batch_options *o) {
 	o->seed = 1;
 	static const char *const flags[] = {"--no-progress", NULL};
 	static const char *const with_value[] = {"-o",     "--output", "--strikes", "--grid",   "--random",    "--ranges",
-	                                         "--seed", "--ball",   "--threads", "--format", "--max-input", NULL};
+	                                         "--seed", "--ball",   "--threads", "--format", "--max-input", "--noise",
+	                                         NULL};
 	batch_parse bp = {o, false};
 	const int status =
 	    pool_cli_walk(PROGRAM, argc, argv, "layout", flags, with_value, batch_option, &bp, &o->layout_path, &o->help);
@@ -1003,8 +1070,8 @@ static int parse_options(int argc, char **argv, batch_options *o) {
 		return pool_cli_usage_error(PROGRAM, "%s", "--random needs --ranges (e.g. --ranges speed=0.5:6,phi=0:360)");
 	if (o->mode != MODE_RANDOM && o->ranges_spec)
 		return pool_cli_usage_error(PROGRAM, "%s", "--ranges goes with --random");
-	if (o->mode != MODE_RANDOM && have_seed)
-		return pool_cli_usage_error(PROGRAM, "%s", "--seed goes with --random");
+	if (o->mode != MODE_RANDOM && !o->noise_spec && have_seed)
+		return pool_cli_usage_error(PROGRAM, "%s", "--seed goes with --random or --noise");
 	return 0;
 }
 
@@ -1096,6 +1163,16 @@ int main(int argc, char **argv) {
 			speed = speed || b->axes[k].param == P_SPEED;
 		if (!speed && !base.has_speed)
 			status = pool_cli_usage_error(PROGRAM, "--ranges: no speed (%s)", no_speed);
+	}
+	if (status == 0 && o.noise_spec) {
+		pool_error e;
+		if (pool_noise_parse(o.noise_spec, &b->noise, &e) != POOL_OK) {
+			char shown[POOL_ESCAPE_SHORT];
+			status = pool_cli_usage_error(PROGRAM, "--noise: %s (e.g. fastfiz, or speed=0.075,phi=0.125)",
+			                              pool_escape_str(shown, sizeof shown, e.message + strlen("noise: ")));
+		}
+		const pool_noise *n = &b->noise;
+		b->noisy = n->speed > 0.0 || n->phi > 0.0 || n->theta > 0.0 || n->a > 0.0 || n->b > 0.0;
 	}
 	if (status == 0) {
 		long threads = o.threads;

@@ -1,8 +1,9 @@
 // pool-sensitivity: how forgiving is a shot? The scenario's strike with Gaussian noise on the
-// five cue parameters (and optionally on ball positions), N samples from one seeded GSL
-// generator, each simulated as pool-batch simulates a strike, on every core; prints and writes
+// five cue parameters (and optionally on ball positions), N samples of libpool games' seeded
+// noise (pool/noise.h), each simulated as pool-batch simulates a strike, on every core; prints and writes
 // the cloud of the chosen balls' final positions (mean, covariance, 95 % ellipse), pocketing
-// probabilities with Wilson intervals, and the picture. --models A,B runs the same samples under
+// probabilities with Wilson intervals, and the picture; with a "game" in the scenario, the
+// probability of a legal shot, of a legal pot and of each outcome under its rules. --models A,B runs the same samples under
 // two model sets (e.g. default,spin-blind: the 2012 work's comparison with FastFiz).
 // Exit status: 0 success, 2 bad input or usage (the message names the option or field), 1
 // internal failure (out of memory, an output that cannot be written, a sample the library
@@ -27,13 +28,14 @@
 #define SENS_MAX_THREADS 1024
 // The scenario parser's limit on numbers (nothing on a table is 1e9 m, m/s or degrees).
 #define SENS_MAX_ABS 1e9
-// mt19937 takes 32-bit seeds, and gsl_rng_set treats 0 as its default 4357: seeds from 1 to
-// 2^32 - 1 are exactly the distinct sequences.
+// Seeds from 1 to 2^32 - 1, the range of the tool's first generator (GSL's mt19937), kept so
+// that every command line that worked still does.
 #define SENS_MAX_SEED 4294967295UL
 
 typedef struct sens_options {
 	const char *scenario_path;
 	const char *sd_spec;
+	const char *noise_spec; ///< --noise: a preset or NAME=SD pairs (pool/noise.h)
 	bool have_position_sd;
 	double position_sd;
 	const char *position_balls;
@@ -49,22 +51,26 @@ typedef struct sens_options {
 } sens_options;
 
 static const char usage_text[] =
-	"usage: pool-sensitivity SCENARIO.json [--sd SPEC] [--position-sd M [--position-balls IDS]]\n"
+	"usage: pool-sensitivity SCENARIO.json [--sd SPEC | --noise NAME|SPEC]\n"
+	"                        [--position-sd M [--position-balls IDS]]\n"
 	"                        [-n N] [--seed S] [--balls IDS] [--models A[,B]] [--threads N]\n"
 	"                        [-o PREFIX] [--max-input BYTES] [--no-progress]\n"
 	"\n"
 	"Runs the scenario's strike N times with Gaussian noise and reports where the chosen balls end:\n"
 	"mean, covariance and 95 % ellipse of their final positions on the table, and the probability\n"
-	"of each being pocketed (in all and per pocket) with its 95 % Wilson score interval.\n"
+	"of each being pocketed (in all and per pocket) with its 95 % Wilson score interval. With a\n"
+	"\"game\" in the scenario, also the probability of a legal shot, of a legal pot (legal, and the\n"
+	"shooter keeps the table or wins) and of each outcome under its rules.\n"
 	"\n"
 	"  --sd SPEC            standard deviations NAME=SIGMA, comma-separated, NAME among speed (m/s),\n"
 	"                       phi, theta (degrees), a, b (m); unnamed parameters have none. theta is\n"
 	"                       folded to |theta| (a cue does not point below the horizontal)\n"
+	"  --noise NAME|SPEC    the same as a preset (none, fastfiz: the tournaments' noise) or a SPEC\n"
 	"  --position-sd M      standard deviation (m) of x and of y of every ball's position\n"
 	"  --position-balls IDS only these balls' positions are noisy (comma-separated ids)\n"
 	"  -n, --samples N      samples (default 500, at most 10000000)\n"
-	"  --seed S             seed of GSL's mt19937 generator, 1 to 4294967295 (default 1); all\n"
-	"                       samples are drawn from it, in order, before any shot runs\n"
+	"  --seed S             seed of the noise, 1 to 4294967295 (default 1); sample i depends on\n"
+	"                       the seed and i only, and its strike is pool-batch --noise's strike i\n"
 	"  --balls IDS          balls whose final positions are studied (default: the struck ball)\n"
 	"  --models A[,B]       model set(s): default (the scenario as written), spin-blind (ball-ball\n"
 	"                       and cushion friction off, like FastFiz), and with a library that has\n"
@@ -170,6 +176,8 @@ static int sens_option(void *context, const char *a, const char *v) {
 		o->no_progress = true;
 	} else if (strcmp(a, "--sd") == 0) {
 		o->sd_spec = v;
+	} else if (strcmp(a, "--noise") == 0) {
+		o->noise_spec = v;
 	} else if (strcmp(a, "--position-sd") == 0) {
 		o->have_position_sd = true;
 		if (!pool_cli_parse_double(v, &o->position_sd) || o->position_sd < 0.0 || o->position_sd > SENS_MAX_ABS)
@@ -212,7 +220,7 @@ static int parse_options(int argc, char **argv, sens_options *o) {
 	static const char *const flags[] = {"--no-progress", NULL};
 	static const char *const with_value[] = {"--sd",      "--position-sd", "--position-balls", "-n",        "--samples",
 	                                         "--seed",    "--balls",       "--models",         "--threads", "-o",
-	                                         "--output",  "--max-input",   NULL};
+	                                         "--output",  "--max-input",   "--noise",          NULL};
 	const int status =
 	    pool_cli_walk(PROGRAM, argc, argv, "scenario", flags, with_value, sens_option, o, &o->scenario_path, &o->help);
 	if (status)
@@ -221,6 +229,8 @@ static int parse_options(int argc, char **argv, sens_options *o) {
 		return 0;
 	if (!o->scenario_path)
 		return pool_cli_usage_error(PROGRAM, "%s", "missing SCENARIO.json");
+	if (o->sd_spec && o->noise_spec)
+		return pool_cli_usage_error(PROGRAM, "%s", "--noise: give --sd or --noise, not both");
 	if (o->position_balls && !o->have_position_sd)
 		return pool_cli_usage_error(PROGRAM, "%s", "--position-balls goes with --position-sd");
 	return 0;
@@ -312,6 +322,21 @@ static int run_study(const sens_options *o, pool_scenario *layout, sens_study *s
 	                                 layout->strike.a, layout->strike.b};
 	if (o->sd_spec && (status = parse_sd(o->sd_spec, s->noise.cue_sd)) != 0)
 		return status;
+	// The noise in pool_noise's units (radians for the angles, as pool_noise_parse makes them).
+	s->noise.cue = (pool_noise){.speed = s->noise.cue_sd[SENS_SPEED], .phi = s->noise.cue_sd[SENS_PHI] * POOL_BATCH_DEG,
+	                            .theta = s->noise.cue_sd[SENS_THETA] * POOL_BATCH_DEG, .a = s->noise.cue_sd[SENS_A],
+	                            .b = s->noise.cue_sd[SENS_B]};
+	if (o->noise_spec) {
+		pool_error e;
+		if (pool_noise_parse(o->noise_spec, &s->noise.cue, &e) != POOL_OK) {
+			char shown[POOL_ESCAPE_SHORT];
+			return pool_cli_usage_error(PROGRAM, "--noise: %s", pool_escape_str(shown, sizeof shown,
+			                                                                     e.message + strlen("noise: ")));
+		}
+		const pool_noise *n = &s->noise.cue;
+		const double sd[SENS_CUE_COUNT] = {n->speed, n->phi / POOL_BATCH_DEG, n->theta / POOL_BATCH_DEG, n->a, n->b};
+		memcpy(s->noise.cue_sd, sd, sizeof sd);
+	}
 	s->noise.position_sd = o->position_sd;
 	if (o->have_position_sd) {
 		if (o->position_balls) {

@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "read_input.h"
 #include "scenario.h"
+#include "view_page.h"
 #ifdef POOL_HAVE_LCM
 #include "sim_publish.h"
 #endif
@@ -20,6 +21,7 @@
 typedef struct sim_options {
 	const char *scenario_path; ///< "-" = standard input
 	const char *output_path;   ///< NULL = standard output
+	const char *view_path;     ///< NULL = no page; else the pool-view page of the result
 	double sample_dt;          ///< s; > 0 adds sampled trajectories
 	bool pretty;               ///< indented JSON
 	bool summary;              ///< human-readable summary on standard error
@@ -34,14 +36,16 @@ typedef struct sim_options {
 typedef void (*sim_event_hook)(const pool_sim *sim, const pool_event *event, void *user);
 
 static const char usage_text[] =
-	"usage: pool-sim SCENARIO.json [-o RESULT.json] [--sample DT] [--pretty] [--summary]\n"
-	"                [--max-input BYTES]\n"
+	"usage: pool-sim SCENARIO.json [-o RESULT.json] [--view PAGE.html] [--sample DT] [--pretty]\n"
+	"                [--summary] [--max-input BYTES]\n"
 	"\n"
 	"Simulates one shot described by a libpool-scenario/1 file (\"-\" reads standard input)\n"
 	"and prints its libpool-result/1 JSON.\n"
 	"\n"
 	"  -o, --output FILE  write the result to FILE instead of standard output (atomically:\n"
 	"                     no file is left behind on failure)\n"
+	"  --view PAGE.html   also write the shot as an animated page (pool-view), opened in\n"
+	"                     any browser\n"
 	"  --sample DT        add \"samples\": every ball's position every DT seconds and at\n"
 	"                     every event (for plots and animations)\n"
 	"  --pretty           indent the JSON\n"
@@ -76,6 +80,10 @@ static int parse_options(int argc, char **argv, sim_options *o) {
 			if (i + 1 >= argc)
 				return pool_cli_usage_error(PROGRAM, "option %s needs a file name", a);
 			o->output_path = argv[++i];
+		} else if (strcmp(a, "--view") == 0) {
+			if (i + 1 >= argc)
+				return pool_cli_usage_error(PROGRAM, "option %s needs a file name", a);
+			o->view_path = argv[++i];
 		} else if (strcmp(a, "--sample") == 0) {
 			if (i + 1 >= argc)
 				return pool_cli_usage_error(PROGRAM, "option %s needs a time step in seconds", a);
@@ -216,6 +224,8 @@ int main(int argc, char **argv) {
 		}
 		hook = pool_lcm_sim_publisher_event;
 		hook_user = publisher;
+		if (scenario.has_game)
+			pool_lcm_sim_publisher_set_game(publisher, &scenario.game, &scenario.def.table);
 	}
 #endif
 	clock_t start = clock();
@@ -244,13 +254,24 @@ int main(int argc, char **argv) {
 	if (o.summary)
 		print_summary(sim, cpu);
 
-	pool_result_options ro = {.sample_dt = o.sample_dt, .pretty = o.pretty, .def = &scenario.def};
+	pool_result_options ro = {.sample_dt = o.sample_dt, .pretty = o.pretty, .def = &scenario.def,
+	                          .game = scenario.has_game ? &scenario.game : NULL};
 	char *json = pool_result_json(sim, &ro);
 	if (!json) {
 		fprintf(stderr, "pool-sim: could not write the result (out of memory or sampling failed)\n");
 		status = POOL_EXIT_INTERNAL;
 	} else {
 		status = pool_cli_write_output(PROGRAM, o.output_path, json);
+	}
+	if (status == 0 && o.view_path) {
+		char *page = pool_view_page(json);
+		if (!page) {
+			fprintf(stderr, "pool-sim: could not write the page (out of memory)\n");
+			status = POOL_EXIT_INTERNAL;
+		} else {
+			status = pool_cli_write_output(PROGRAM, o.view_path, page);
+		}
+		free(page);
 	}
 	free(json);
 	pool_sim_destroy(sim);

@@ -7,7 +7,7 @@ bash tools/setup.sh
 JOBS="${JOBS:-$(nproc)}"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j"$JOBS" >/dev/null
-mkdir -p out
+# (every command creates the directories it writes to)
 echo "== Quartic solver: libpool against GSL =="
 build/release/tools/pool-bench-quartic
 

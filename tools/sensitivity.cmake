@@ -1,6 +1,6 @@
 # pool-sensitivity (tools/pool_sensitivity.c, tools/sensitivity/): noise on a strike, N samples
-# from GSL's generator, the clouds of final positions and their statistics (GSL). Only this tool
-# links GSL; libpool itself does not. Deferred to the end of tools/CMakeLists.txt because
+# of libpool games' noise (pool/noise.h), the clouds of final positions and their statistics
+# (GSL). Only this tool links GSL; libpool itself does not. Deferred to the end of tools/CMakeLists.txt because
 # pool_scenario is defined by sim.cmake, which is included after this file.
 function(pool_sensitivity_setup)
   if(NOT TARGET pool_scenario)

@@ -9,6 +9,7 @@ PACKAGES=(
   liblcm-dev liblcm-bin libglib2.0-dev
   libcmocka-dev libjansson-dev
   python3 python3-matplotlib python3-numpy python3-venv python3-pip
+  chromium
   iproute2 util-linux
 )
 
@@ -36,8 +37,18 @@ fi
 if ! "$VENV/bin/python" -c "import lcm" 2>/dev/null; then
   "$VENV/bin/pip" install -q --disable-pip-version-check "lcm==1.5.3"
 fi
+# websockets for pool-view --live (the bridge from LCM to the page) and the browser tests' DevTools
+# client.
+if ! "$VENV/bin/python" -c "import websockets; assert websockets.__version__ == '15.0.1'" 2>/dev/null; then
+  "$VENV/bin/pip" install -q --disable-pip-version-check "websockets==15.0.1"
+fi
 # Dask for libpool.dask and its test (tests/python_dask), with a NumPy from PyPI: 1.x, because the
 # venv also sees Debian's matplotlib (--system-site-packages), built against NumPy 1.x.
 if ! "$VENV/bin/python" -c "import dask.distributed, numpy; assert numpy.__version__ == '1.26.4'" 2>/dev/null; then
   "$VENV/bin/pip" install -q --disable-pip-version-check "numpy==1.26.4" "dask[distributed]==2026.8.0"
+fi
+# Gymnasium for libpool.gym and its tests (tests/games/test_gym.py); also the extra [gym] of
+# pip install ./python.
+if ! "$VENV/bin/python" -c "import gymnasium; assert gymnasium.__version__ == '1.4.0'" 2>/dev/null; then
+  "$VENV/bin/pip" install -q --disable-pip-version-check "gymnasium==1.4.0"
 fi

@@ -5,9 +5,16 @@ pkg_check_modules(JANSSON REQUIRED IMPORTED_TARGET jansson)
 file(GLOB POOL_SCENARIO_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/common/*.c)
 # bench_util.c is pool_bench_util (bench_util.cmake): benchmarks link it without jansson.
 list(REMOVE_ITEM POOL_SCENARIO_SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/common/bench_util.c)
-add_library(pool_scenario STATIC ${POOL_SCENARIO_SOURCES})
+# The pool-view page template, built into pool_scenario for pool-sim --view (view_page.c).
+set(POOL_VIEW_TEMPLATE_C ${CMAKE_CURRENT_BINARY_DIR}/view_template.c)
+add_custom_command(OUTPUT ${POOL_VIEW_TEMPLATE_C}
+  COMMAND ${CMAKE_COMMAND} -DINPUT=${CMAKE_CURRENT_SOURCE_DIR}/view/pool_view.html
+          -DOUTPUT=${POOL_VIEW_TEMPLATE_C} -P ${CMAKE_CURRENT_SOURCE_DIR}/view/embed.cmake
+  DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/view/pool_view.html ${CMAKE_CURRENT_SOURCE_DIR}/view/embed.cmake
+  COMMENT "Embedding the pool-view page" VERBATIM)
+add_library(pool_scenario STATIC ${POOL_SCENARIO_SOURCES} ${POOL_VIEW_TEMPLATE_C})
 target_include_directories(pool_scenario PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/common)
-target_link_libraries(pool_scenario PUBLIC pool PkgConfig::JANSSON m)
+target_link_libraries(pool_scenario PUBLIC pool pool_games PkgConfig::JANSSON m)
 
 add_executable(pool-sim ${CMAKE_CURRENT_SOURCE_DIR}/pool_sim.c)
 target_link_libraries(pool-sim PRIVATE pool_scenario)
@@ -17,4 +24,7 @@ target_link_libraries(pool-rack PRIVATE pool_scenario)
 
 install(TARGETS pool-sim pool-rack RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(PROGRAMS ${CMAKE_CURRENT_SOURCE_DIR}/pool-plot ${CMAKE_CURRENT_SOURCE_DIR}/pool-fidelity-plot
+                 ${CMAKE_CURRENT_SOURCE_DIR}/pool-view
         DESTINATION ${CMAKE_INSTALL_BINDIR})
+# pool-view finds its page in ../share/libpool/ once installed.
+install(FILES ${CMAKE_CURRENT_SOURCE_DIR}/view/pool_view.html DESTINATION ${CMAKE_INSTALL_DATADIR}/libpool)

@@ -56,10 +56,9 @@ const char kUsage[] =
     "                   (default: every compare/scenarios/*.json)\n"
     "  --airborne       the airborne scenarios, compare/scenarios/airborne/*.json (jump, masse,\n"
     "                   cushion hop, drop, hop), instead of the default set or after the\n"
-    "                   --scenario files; not in the default set: libpool refuses airborne\n"
-    "                   motion until it implements it (its rows fail, exit status 1), and a\n"
-    "                   scenario with neither closed form nor libpool reference says \"no\n"
-    "                   reference\"\n"
+    "                   --scenario files; not in the default set (they take longer); each is\n"
+    "                   scored against its airborne closed form where it has one, else against\n"
+    "                   libpool's result (options.airborne)\n"
     "  --link           the persistent-contact (LINK) scenarios, compare/scenarios/link/*.json\n"
     "                   (push, rest_on_two, slide_off, airborne_break), like --airborne; their\n"
     "                   reference is libpool's result with LINK steps, which is not exact\n"
@@ -513,8 +512,8 @@ int main(int argc, char **argv) {
 		if (!ref)
 			ref = make_libpool_reference(*scenario, &error);
 		if (!ref) {
-			// No ground truth (e.g. an airborne shot libpool cannot simulate yet): the engines
-			// still run, their rows say "no reference", and the harness exits 1.
+			// No ground truth (libpool refused the scenario): the engines still run, their rows
+			// say "no reference", and the harness exits 1.
 			std::cerr << "pool-compare: " << error << " (no reference: the engines run, nothing is scored)\n";
 			status = 1;
 			ref = make_no_reference(*scenario, error);

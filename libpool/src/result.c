@@ -2,6 +2,7 @@
 #include "pool/base.h"
 #include "pool/ball.h"
 #include "pool/event.h"
+#include "pool/sim.h"
 
 #include <string.h>
 
@@ -59,4 +60,14 @@ const char *pool_rail_name(pool_rail rail) {
 const char *pool_pocket_name(pool_pocket pocket) {
 	static const char *const names[] = {"sw", "se", "nw", "ne", "s", "n"};
 	return (int)pocket >= 0 && (int)pocket < 6 ? names[pocket] : NULL;
+}
+
+const char *pool_stop_reason_name(pool_stop_reason reason) {
+	switch (reason) {
+	case POOL_STOP_NONE: return "none";
+	case POOL_STOP_REST: return "rest";
+	case POOL_STOP_MAX_TIME: return "max_time";
+	case POOL_STOP_MAX_EVENTS: return "max_events";
+	}
+	return "unknown";
 }

@@ -65,9 +65,9 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "table.width: must be > 2 params.ball_radius");
 	if (isnan(def->max_time) || !(def->max_time > 0.0))
 		return pool_error_set(error, isnan(def->max_time) ? POOL_ERR_NON_FINITE : POOL_ERR_INVALID_ARGUMENT,
-		                      "options.max_time: must be > 0");
+		                      "def.max_time: must be > 0");
 	if (def->max_events <= 0)
-		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "options.max_events: must be > 0");
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "def.max_events: must be > 0");
 	if ((def->allocator.alloc == NULL) != (def->allocator.free == NULL))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "allocator: alloc and free must both be set");
 	if ((r = pool_models_validate(&def->models, error)))
@@ -243,11 +243,11 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	if (pool_world_planar(sim)) {
 		if (fabs(ball->pos.z - R) > tol)
 			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
-			                      "balls[%d].pos: z must be the ball radius (%g m) in planar mode (options.airborne puts balls off the cloth)", idx, R);
+			                      "balls[%d].pos: z must be the ball radius (%g m) in planar mode (def.airborne puts balls off the cloth)", idx, R);
 		// Dropping a vertical velocity silently would simulate another shot than the caller asked for.
 		if (fabs(ball->vel.z) > POOL_APPROACH_EPS)
 			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
-			                      "balls[%d].vel: vertical velocity %g m/s needs airborne motion (options.airborne)",
+			                      "balls[%d].vel: vertical velocity %g m/s needs airborne motion (def.airborne)",
 			                      idx, ball->vel.z);
 	} else if (!(ball->pos.z >= R - tol)) {
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "balls[%d].pos: z below the ball radius (%g m): under the cloth",
@@ -489,6 +489,25 @@ pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *ou
 	if (t > sim->processed)
 		return POOL_ERR_STATE;
 	pool_history_state_at(&sim->history, &sim->def.params, sim->n, t, out);
+	return POOL_OK;
+}
+
+pool_result pool_sim_states_at(const pool_sim *sim, const double *times, int count, pool_ball_state *out,
+                               int *bad_index) {
+	if (!sim || count < 0 || (count > 0 && (!times || !out)))
+		return POOL_ERR_INVALID_ARGUMENT;
+	// Every time is checked before any state is written, so a failed call leaves out alone.
+	for (int k = 0; k < count; ++k) {
+		const double t = times[k];
+		pool_result r = isnan(t) || t < 0.0 ? POOL_ERR_INVALID_ARGUMENT : t > sim->processed ? POOL_ERR_STATE : POOL_OK;
+		if (r != POOL_OK) {
+			if (bad_index)
+				*bad_index = k;
+			return r;
+		}
+	}
+	for (int k = 0; k < count; ++k)
+		pool_history_state_at(&sim->history, &sim->def.params, sim->n, times[k], out + (size_t)k * (size_t)sim->n);
 	return POOL_OK;
 }
 

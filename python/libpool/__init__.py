@@ -16,6 +16,7 @@ running in another thread. Everything returned is a Python copy that close() can
 """
 
 import math
+import numbers
 import struct
 import sys
 import threading
@@ -33,6 +34,7 @@ __all__ = [
     "validate_table", "validate_params", "strike_velocities", "rack", "break_strike",
     "quartic_real_roots", "quartic_smallest_root_in", "library_path", "RESULT_NAMES",
     "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict",
+    "version", "ball_on_cloth", "MOTION_NAMES", "EVENT_TYPES", "STOP_REASONS", "write_result",
 ]
 
 # pool_result values by name (pool/base.h).
@@ -43,7 +45,14 @@ RESULT_NAMES = {
     -9: "POOL_ERR_UNKNOWN_PRESET", -10: "POOL_ERR_STATE", -11: "POOL_ERR_INTERNAL",
 }
 _ERR_INVALID_ARGUMENT = -1
+_ERR_NON_FINITE = -2
 _ERR_STATE = -10
+# Names by code, as in result files and pool/ball.h, pool/event.h, pool/sim.h.
+MOTION_NAMES = ("stationary", "spinning", "sliding", "rolling", "airborne", "linked", "pocketed",
+                "off_table")
+EVENT_TYPES = ("strike", "slide_roll", "roll_stop", "spin_stop", "ball_ball", "ball_cushion",
+               "ball_table", "pocket", "off_table", "link_begin", "link_step", "link_end")
+STOP_REASONS = ("none", "rest", "max_time", "max_events")
 _STOP_NAMES = {0: None, 1: "rest", 2: "max_time", 3: "max_events"}
 _RACKS = {"8ball": 0, "9ball": 1}
 _MOTION_POCKETED = 6
@@ -75,8 +84,43 @@ def _check(code, err=None):
     return code
 
 
+# Strict arguments: a bool is not a number, a string is not a number, a float is not an id; the
+# message names the argument. Types raise TypeError, values PoolError (POOL_ERR_INVALID_ARGUMENT
+# or POOL_ERR_NON_FINITE), as the library's own checks do.
+
+def _type_name(v):
+    return type(v).__name__
+
+
+def _real(v, name):
+    """v as a float: any real number (int, float, NumPy scalars), never a bool or a string."""
+    if isinstance(v, bool) or not isinstance(v, numbers.Real):
+        raise TypeError(f"{name}: expected a number, got {_type_name(v)} {v!r}")
+    return float(v)
+
+
+def _finite(v, name):
+    x = _real(v, name)
+    if not math.isfinite(x):
+        raise PoolError(_ERR_NON_FINITE, f"{name}: must be a finite number, got {x!r}")
+    return x
+
+
+def _bool(v, name):
+    if not isinstance(v, bool) and type(v).__name__ != "bool_":  # Python's or NumPy's bool
+        raise TypeError(f"{name}: expected True or False, got {_type_name(v)} {v!r}")
+    return bool(v)
+
+
+def _vec_values(v, name):
+    """The numbers of a sequence, each checked (a string is refused, not iterated)."""
+    if isinstance(v, (str, bytes)) or not hasattr(v, "__len__"):
+        raise TypeError(f"{name}: expected a sequence of numbers, got {_type_name(v)} {v!r}")
+    return tuple(_finite(x, f"{name}[{i}]") for i, x in enumerate(v))
+
+
 def _vec(v, name):
-    t = tuple(float(x) for x in v)
+    t = _vec_values(v, name)
     if len(t) != 3:
         raise PoolError(_ERR_INVALID_ARGUMENT, f"{name}: expected 3 numbers, got {len(t)}")
     return Vec3(*t)
@@ -98,8 +142,11 @@ def _c_string(value, name):
 
 
 def _int32(v, name):
-    if isinstance(v, bool) or int(v) != v or not -2**31 <= int(v) < 2**31:
-        raise PoolError(_ERR_INVALID_ARGUMENT, f"{name}: must be a 32-bit integer")
+    """An int (or NumPy integer) in the 32-bit range: 3.0, "3" and True are refused."""
+    if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+        raise TypeError(f"{name}: expected an int, got {_type_name(v)} {v!r}")
+    if not -2**31 <= int(v) < 2**31:
+        raise PoolError(_ERR_INVALID_ARGUMENT, f"{name}: must be a 32-bit integer, got {v}")
     return int(v)
 
 
@@ -211,8 +258,15 @@ def validate_params(params):
 
 
 def make_strike(speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0):
-    """A C Strike from degrees (converted as pool-sim converts the scenario file's degrees)."""
-    return Strike(float(speed), float(phi_deg) * _DEG, float(theta_deg) * _DEG, float(a), float(b))
+    """A C Strike from degrees (converted as pool-sim converts the scenario file's degrees).
+    Numbers only (TypeError otherwise); theta_deg in [0, 90) degrees (PoolError naming it)."""
+    speed = _finite(speed, "strike.speed")
+    phi = _finite(phi_deg, "strike.phi_deg")
+    theta = _finite(theta_deg, "strike.theta_deg")
+    if not 0.0 <= theta < 90.0:
+        raise PoolError(_ERR_INVALID_ARGUMENT,
+                        f"strike.theta_deg: must be in [0, 90) degrees, got {theta:g}")
+    return Strike(speed, phi * _DEG, theta * _DEG, _finite(a, "strike.a"), _finite(b, "strike.b"))
 
 
 def strike_velocities(speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0, params=None):
@@ -227,7 +281,24 @@ def strike_velocities(speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0, params=No
 
 def break_strike(speed):
     """pool_break_strike: centre ball, level cue, straight at the apex (a C Strike, radians)."""
-    return _lib().pool_break_strike(float(speed))
+    return _lib().pool_break_strike(_finite(speed, "break_strike.speed"))
+
+
+def version():
+    """The version of the libpool.so in use: (major, minor, patch), from pool_version()."""
+    v = _lib().pool_version()
+    return (v // 10000, v // 100 % 100, v % 100)
+
+
+def ball_on_cloth(id, x, y, params=None):
+    """A Ball at rest on the cloth at (x, y) m: z = the ball radius of params (default
+    default_params()), no velocity or spin (pool_ball_on_cloth)."""
+    bid = _int32(id, "ball.id")
+    px, py = _finite(x, "ball.x"), _finite(y, "ball.y")
+    if params is not None and not isinstance(params, Params):
+        raise TypeError(f"params: expected a Params, got {_type_name(params)}")
+    p = params if params is not None else default_params()
+    return Ball._from_c(_lib().pool_ball_on_cloth(bid, px, py, byref(p)))
 
 
 def rack(kind, gap=0.0, table=None, params=None):
@@ -237,12 +308,15 @@ def rack(kind, gap=0.0, table=None, params=None):
 
 
 def _rack_c(kind, gap, table, params):
+    if not isinstance(kind, str):
+        raise TypeError(f"rack: kind: expected a str, got {_type_name(kind)}")
     if kind not in _RACKS:
         raise PoolError(_ERR_INVALID_ARGUMENT, f"rack: unknown kind '{kind}' (8ball or 9ball)")
     t = table if table is not None else default_table()
     p = params if params is not None else default_params()
     out = (CBallState * 16)()
-    n = _check(_lib().pool_rack(_RACKS[kind], byref(t), byref(p), float(gap), out, 16))
+    n = _check(_lib().pool_rack(_RACKS[kind], byref(t), byref(p), _finite(gap, "rack.gap"), out,
+                                16))
     return out[:n]
 
 
@@ -354,14 +428,22 @@ def _five(coeffs):
 def _sim_def(table, params, max_time, max_events, airborne, models=None):
     d = default_sim_def()
     if table is not None:
-        d.table = _table_preset(table, "table") if isinstance(table, str) else table
+        if isinstance(table, str):
+            d.table = _table_preset(table, "table")
+        elif isinstance(table, TableDef):
+            d.table = table
+        else:
+            raise TypeError(f"table: expected a preset name or a TableDef, got {_type_name(table)}")
     if params is not None:
+        if not isinstance(params, Params):
+            raise TypeError(f"params: expected a Params (default_params()), got "
+                            f"{_type_name(params)}")
         d.params = params
     if max_time is not None:
-        d.max_time = float(max_time)
+        d.max_time = _finite(max_time, "max_time")
     if max_events is not None:
-        d.max_events = _int32(max_events, "options.max_events")
-    d.airborne = bool(airborne)
+        d.max_events = _int32(max_events, "max_events")
+    d.airborne = _bool(airborne, "airborne")
     if models is not None:
         d.models = make_models(models)
     return d
@@ -372,7 +454,8 @@ class Sim:
     call close(); reset() starts a new shot reusing every buffer (the candidate-shot loop).
 
     table: a preset name ("wpa-9ft"...) or a TableDef; params: a Params (default_params());
-    max_time in s, max_events; airborne is rejected by the library for now; models: the
+    max_time in s, max_events; airborne: True for motion off the cloth (jumps, hops, balls
+    leaving the table; False, the default, is planar); models: the
     optional models (docs/physics.md "Optional models") as a dict of names, e.g. {"cushion":
     "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "endmass"} (kinds not given keep
     the defaults), or a Models (make_models). Their parameters (throw_a, throw_b, throw_c,
@@ -512,14 +595,14 @@ class Sim:
     def add_ball(self, id, pos, vel=(0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0)):
         """Adds a ball before the shot. pos is (x, y) on the cloth (z = R) or (x, y, z)."""
         with self._lock:
+            if type(id) is not int or not -0x80000000 <= id <= 0x7FFFFFFF:
+                id = _int32(id, "ball.id")
+            pos = _vec_values(pos, "ball.pos")
             if len(pos) == 2:
                 pos = (pos[0], pos[1], self._def.params.ball_radius)
             # Vec3(*v) would zero-fill a short sequence silently, hence the length checks.
-            if len(pos) != 3 or len(vel) != 3 or len(omega) != 3:
-                _vec(pos, "ball.pos"), _vec(vel, "ball.vel"), _vec(omega, "ball.omega")
-            if type(id) is not int or not -0x80000000 <= id <= 0x7FFFFFFF:
-                id = _int32(id, "ball.id")
-            s = CBallState(id, 0, Vec3(*pos), Vec3(*vel), Vec3(*omega))
+            s = CBallState(id, 0, _vec(pos, "ball.pos"), _vec(vel, "ball.vel"),
+                           _vec(omega, "ball.omega"))
             _check(_lib().pool_sim_add_ball(self._p(), byref(s), byref(self._err)), self._err)
 
     def _add_c(self, states):
@@ -573,7 +656,9 @@ class Sim:
 
     def run_until(self, t):
         """Processes every event at or before t (s)."""
-        t = float(t)
+        t = _real(t, "t")
+        if math.isnan(t):
+            raise PoolError(_ERR_INVALID_ARGUMENT, "t: must be a time in s, got nan")
         with self._lock:
             _check(_lib().pool_sim_run_until(self._p(), t))
 
@@ -662,21 +747,75 @@ class Sim:
     def state_at(self, t):
         """Every ball at time t (exact, closed form between events), by insertion order; t must
         not exceed the processed time unless the shot is over."""
-        t = float(t)
+        t = _real(t, "t")
         with self._lock:
             lib, p = _lib(), self._p()
             n = lib.pool_sim_ball_count(p)
             if self._states is None or len(self._states) < max(n, 1):
                 self._states = (CBallState * max(n, 16))()
-            _check(lib.pool_sim_state_at(p, t, self._states))
+            code = lib.pool_sim_state_at(p, t, self._states)
+            if code < 0:
+                raise PoolError(code, self._time_message("t", t))
             raw = _copy_balls(addressof(self._states), n)
         return _unpack_balls(raw)
+
+    def _time_message(self, name, t):
+        """Why pool_sim_state_at refused t (call with the lock held)."""
+        if not (t >= 0.0):
+            return f"{name}: must be a time >= 0 s, got {t!r}"
+        return (f"{name}: {t!r} s is beyond the processed time "
+                f"{_lib().pool_sim_time(self._p())!r} s (run the shot further first)")
+
+    def trajectory(self, times):
+        """Every ball's exact state at each of the times (s), as NumPy arrays, in one C call
+        (pool_sim_states_at): a Trajectory with t [k], ids [n], pos, vel, omega [k, n, 3] and
+        motion [k, n] (codes of MOTION_NAMES). Times need no order; each must be >= 0 and at
+        most the processed time (any once the shot is over). Needs NumPy."""
+        from . import arrays
+        return arrays.trajectory(self, times)
+
+    def history(self):
+        """The shot's events and their after-states as NumPy arrays (a History), copied in one
+        pass. Needs NumPy."""
+        from . import arrays
+        return arrays.history(self)
+
+    def layout(self, t=None):
+        """A libpool-scenario/1 document (a dict) of this simulation at time t (default: the end
+        of what has been processed, the final positions of a finished shot): the table, params,
+        options and models, and every ball still in play with its state then; no strike. Feed it
+        to libpool.batch.run, pool-sim (json.dump) or another Sim (Sim.from_layout)."""
+        from . import documents
+        return documents.layout(self, t)
+
+    def result(self, sample_dt=None):
+        """The libpool-result/1 document (a dict) of this simulation, as pool-sim writes it
+        (events, final, initial, stats, table, params, models; samples every sample_dt s when
+        given), for pool-plot and pool-view (libpool.write_result)."""
+        from . import documents
+        return documents.result(self, sample_dt)
+
+    @classmethod
+    def from_layout(cls, layout, strike=True):
+        """A Sim set up from a libpool-scenario/1 document (path, JSON text or dict, read by
+        libpool.batch.load_layout's rules): its table, params, options, models and balls, and its
+        strike applied unless strike=False. Needs NumPy (libpool.batch)."""
+        from . import documents
+        return documents.sim_from_layout(cls, layout, strike)
+
+
+def write_result(path, source, sample_dt=None, pretty=False):
+    """Writes a libpool-result/1 file: source is a Sim (its result(sample_dt)) or a result dict.
+    Written through a temporary file renamed over path (no partial file on failure); missing
+    directories are created. For pool-plot and pool-view."""
+    from . import documents
+    documents.write_result(path, source, sample_dt, pretty)
 
 
 def __getattr__(name):
     # libpool.batch (NumPy) is imported on first use, so `import libpool` needs nothing but the
     # standard library.
-    if name == "batch":
+    if name in ("batch", "game", "gym", "aim", "arrays", "documents"):
         import importlib
-        return importlib.import_module(".batch", __name__)
+        return importlib.import_module("." + name, __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

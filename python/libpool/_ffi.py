@@ -109,6 +109,7 @@ _E = POINTER(Error)
 
 # name: (restype, argtypes) for every public function of pool/*.h.
 _PROTOTYPES = {
+    "pool_version": (c_int, []),
     "pool_result_str": (c_char_p, [c_int]),
     "pool_motion_name": (c_char_p, [c_int]),
     "pool_motion_from_name": (c_int, [c_char_p]),
@@ -135,6 +136,8 @@ _PROTOTYPES = {
     "pool_cushion_model_from_name": (c_int, [c_char_p]),
     "pool_ball_friction_model_from_name": (c_int, [c_char_p]),
     "pool_squirt_model_from_name": (c_int, [c_char_p]),
+    "pool_stop_reason_name": (c_char_p, [c_int]),
+    "pool_ball_on_cloth": (BallState, [c_int32, c_double, c_double, POINTER(Params)]),
     "pool_sim_create": (c_int, [POINTER(SimDef), POINTER(_sim_p), _E]),
     "pool_sim_destroy": (None, [_sim_p]),
     "pool_sim_reset": (c_int, [_sim_p, POINTER(SimDef), _E]),
@@ -149,6 +152,8 @@ _PROTOTYPES = {
     "pool_sim_ball_count": (c_int, [_sim_p]),
     "pool_sim_balls": (POINTER(BallState), [_sim_p]),
     "pool_sim_state_at": (c_int, [_sim_p, c_double, POINTER(BallState)]),
+    "pool_sim_states_at": (c_int, [_sim_p, POINTER(c_double), c_int, POINTER(BallState),
+                                   POINTER(c_int)]),
     "pool_sim_events": (POINTER(Event), [_sim_p, POINTER(c_int)]),
     "pool_sim_event_states": (POINTER(BallState), [_sim_p, POINTER(Event)]),
 }

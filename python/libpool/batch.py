@@ -62,11 +62,12 @@ class Layout:
     z = R where the file gave [x, y]), base strike (ball id, and speed, phi and theta in DEGREES
     as written, a, b; or None)."""
 
-    def __init__(self, sim_def, balls, strike_ball, strike):
+    def __init__(self, sim_def, balls, strike_ball, strike, game=None):
         self.sim_def = sim_def
         self.balls = balls
         self.strike_ball = strike_ball
         self.strike = strike  # (speed, phi_deg, theta_deg, a, b) or None
+        self.game = game      # libpool.game.State of the layout's "game", or None
 
     @property
     def ball_ids(self):
@@ -191,7 +192,7 @@ def _parse_document(doc):
     if not isinstance(doc, dict):
         _fail("(document): must be a JSON object")
     _fields(doc, "", ("format", "name", "description", "table", "params", "balls", "strike",
-                      "options", "models"))
+                      "options", "models", "game"))
     if "format" not in doc:
         _fail(f'format: missing (expected "{_FORMAT}")')
     if doc["format"] != _FORMAT:
@@ -203,9 +204,13 @@ def _parse_document(doc):
     err = CError()
     # table
     t = doc.get("table")
+    if isinstance(t, str):  # "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}
+        if "\0" in t or lib.pool_table_preset(t.encode(), byref(d.table)) != 0:
+            _fail(f'table: unknown preset "{t}" (wpa-9ft, wpa-8ft, wpa-7ft)')
+        t = None
     if t is not None:
         if not isinstance(t, dict):
-            _fail("table: must be an object")
+            _fail("table: must be a preset name or an object")
         _fields(t, "table", ("preset", "length", "width", "cushion_height", "corner_mouth",
                              "side_mouth"))
         if "preset" in t:
@@ -312,12 +317,42 @@ def _parse_document(doc):
                 _fail("strike.theta: must be in [0, 90) degrees")
             rest.append(x)
         strike = (speed, *rest)
-    layout = Layout(d, balls, strike_ball, strike)
+    layout = Layout(d, balls, strike_ball, strike, _parse_game(doc.get("game"), balls, strike))
     if d.airborne:
         _check_airborne(layout)
     else:
         _check_with_sim(layout)
     return layout
+
+
+def _parse_game(game_doc, balls, strike):
+    """The scenario parser's parse_game: rules and state, the balls a table of those rules, and
+    a strike for the rules to judge."""
+    if game_doc is None:
+        return None
+    from . import game
+    if not isinstance(game_doc, dict):
+        _fail('game: must be an object ("rules", "state")')
+    _fields(game_doc, "game", ("rules", "state"))
+    if "rules" not in game_doc:
+        _fail("game.rules: missing (8ball, 9ball, three_cushion)")
+    rules = game_doc["rules"]
+    if not isinstance(rules, str):
+        _fail("game.rules: must be a string (8ball, 9ball, three_cushion)")
+    if rules not in game.RULES:
+        _fail(f'game.rules: unknown rules "{rules}" (8ball, 9ball, three_cushion)')
+    try:
+        state = game.State.from_dict(rules, game_doc.get("state"))
+    except ValueError as e:
+        _fail(str(e))
+    err = CError()
+    arr = (CBallState * max(len(balls), 1))(*balls)
+    c_state = state._to_c()
+    if game._load().pool_game_check_balls(byref(c_state), arr, len(balls), byref(err)) != 0:
+        _fail(err.message.decode("utf-8", "replace"))
+    if strike is None:
+        _fail("game: the rules judge a struck shot: the scenario needs a strike")
+    return state
 
 
 _TOUCH = 1e-9  # POOL_TOUCH_TOLERANCE
@@ -451,6 +486,8 @@ def _strike_table(strikes, base_ball, base, n_hint=None):
         for k in names:
             if k not in STRIKE_FIELDS:
                 raise ValueError(f"strikes: unknown field {k!r} (ball, speed, phi, theta, a, b)")
+            if strikes.dtype[k].kind not in "iuf":
+                raise TypeError(f"strikes.{k}: expected numbers, got {strikes.dtype[k]}")
         arr = strikes.reshape(-1)
         n = len(arr)
         if base is None and "speed" not in names:
@@ -461,6 +498,18 @@ def _strike_table(strikes, base_ball, base, n_hint=None):
         for j, k in enumerate(STRIKE_FIELDS[1:]):
             values[:, j] = arr[k] if k in names else base_v[j]
     else:
+        if not isinstance(strikes, np.ndarray):
+            # A bool is not a speed, a string not a number: NumPy would convert both silently.
+            for i, row in enumerate(strikes):
+                if isinstance(row, (str, bytes)):
+                    raise TypeError(f"strikes[{i}]: expected a row of 6 numbers, got {row!r}")
+                for j, x in enumerate(row):
+                    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.number)):
+                        name = STRIKE_FIELDS[j] if j < len(STRIKE_FIELDS) else str(j)
+                        raise TypeError(f"strikes[{i}].{name}: expected a number, got "
+                                        f"{type(x).__name__} {x!r}")
+        elif strikes.dtype.kind not in "iuf":
+            raise TypeError(f"strikes: expected numbers, got an array of {strikes.dtype}")
         a = np.asarray(strikes, dtype=np.float64)
         if a.ndim == 1 and a.size == 0:
             a = a.reshape(0, 6)
@@ -481,6 +530,9 @@ def _strike_table(strikes, base_ball, base, n_hint=None):
         if j == 0 and math.isnan(x) and base is None:
             raise ValueError(f"strikes[{i}].speed: missing (the layout has no strike to take "
                              "the speed from)")
+        if not math.isfinite(x):
+            raise ValueError(f"strikes[{i}].{STRIKE_FIELDS[j + 1]}: must be a finite number, "
+                             f"got {x:g}")
         raise ValueError(f"strikes[{i}].{STRIKE_FIELDS[j + 1]}: {x:g} is too large "
                          f"(limit {_MAX_ABS:g})")
     return ball_f.astype(np.int32), values
@@ -504,6 +556,12 @@ class BatchResult:
     state        int8 [n, m]      final pool_motion codes (MOTION_NAMES; -1 if refused)
     pocketed     bool [n, m]      state == pocketed
     off_table    bool [n, m]      state == off_table
+
+    With a "game" in the layout (pool-batch's game columns; libpool.game.judge of each shot):
+    legal        int8 [n]         1 legal, 0 a foul, -1 refused strike
+    fouls        uint32 [n]       foul bits, bit k = libpool.game.FOULS[k]
+    outcome      int8 [n]         index in libpool.game.OUTCOMES, -1 refused
+    points       int32 [n]        what the shot scored
     """
 
     def __init__(self, **fields):
@@ -560,6 +618,10 @@ class _Shots:
         self.pos = np.zeros((n, m, 3), dtype=np.float64)
         self.state = np.zeros((n, m), dtype=np.int8)
         self.error = [""] * n
+        self.legal = np.full(n, -1, dtype=np.int8)
+        self.fouls = np.zeros(n, dtype=np.uint32)
+        self.outcome = np.full(n, -1, dtype=np.int8)
+        self.points = np.zeros(n, dtype=np.int32)
         self.next = 0
         self.lock = threading.Lock()
         self.failure = None
@@ -650,6 +712,13 @@ def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
                 raise PoolError(r, "shot %d: simulation failed at t = %.17g s" % (i, time_(sim)))
             ev_stop[i] = stop_(sim)
             ev_end[i] = t_end
+            if layout.game is not None:
+                from . import game
+                g = game.judge_shot(sim, layout.sim_def.table, layout.game, lib)
+                shots.legal[i] = g.legal
+                shots.fouls[i] = sum(1 << game.FOULS.index(f) for f in g.fouls)
+                shots.outcome[i] = game.OUTCOMES.index(g.outcome)
+                shots.points[i] = g.points
             evs = events_(sim, count_p)
             n = count.value
             ev_events[i] = n
@@ -736,7 +805,9 @@ def run(layout, strikes, workers=None, ball=None, chunk=64):
         ball_ids=np.array(ids, dtype=np.int32), ball=ball_col, strikes=values,
         stop_reason=shots.stop, error=shots.error, events=shots.events,
         end_time=shots.end_time, first_hit=shots.first_hit, pos=pos, state=state,
-        pocketed=state == _MOTION_POCKETED, off_table=state == _MOTION_OFF_TABLE)
+        pocketed=state == _MOTION_POCKETED, off_table=state == _MOTION_OFF_TABLE,
+        **({"legal": shots.legal, "fouls": shots.fouls, "outcome": shots.outcome,
+            "points": shots.points} if lay.game is not None else {}))
 
 
 def _ffi_int32(v, name):

@@ -1,5 +1,7 @@
-# Installs libpool into a scratch prefix, then configures, builds and runs a tiny project that
-# uses it through find_package(libpool): what a user linking libpool does.
+# Installs libpool into a scratch prefix, then builds and runs a tiny program against it as a
+# user does: a CMake project through find_package(libpool) (static libpool::pool), and the same
+# source compiled with `cc $(pkg-config --cflags --libs libpool)` (shared libpool.so, found at run
+# time through the .pc file's rpath, with LD_LIBRARY_PATH unset).
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix --component Unspecified
   RESULT_VARIABLE rc)
@@ -16,7 +18,44 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building the consumer failed: ${rc}")
 endif()
 execute_process(COMMAND ${WORK_DIR}/build/consumer RESULT_VARIABLE rc OUTPUT_VARIABLE out)
-message(STATUS "${out}")
+message(STATUS "find_package: ${out}")
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the consumer failed: ${rc}")
+  message(FATAL_ERROR "the find_package consumer failed: ${rc}")
+endif()
+execute_process(COMMAND ${WORK_DIR}/build/consumer_games RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+message(STATUS "find_package: ${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the find_package games consumer failed: ${rc}")
+endif()
+
+# pkg-config, as the README's one-line build does it.
+find_program(PKG_CONFIG NAMES pkg-config pkgconf REQUIRED)
+file(GLOB_RECURSE pc_files ${WORK_DIR}/prefix/*/libpool.pc)
+list(LENGTH pc_files pc_count)
+if(NOT pc_count EQUAL 1)
+  message(FATAL_ERROR "expected one installed libpool.pc, found: ${pc_files}")
+endif()
+get_filename_component(pc_dir ${pc_files} DIRECTORY)
+set(ENV{PKG_CONFIG_PATH} ${pc_dir})
+unset(ENV{LD_LIBRARY_PATH})
+execute_process(COMMAND ${PKG_CONFIG} --modversion libpool OUTPUT_VARIABLE version
+  OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0 OR NOT version STREQUAL "${PROJECT_VERSION}")
+  message(FATAL_ERROR "pkg-config --modversion libpool: '${version}' (expected ${PROJECT_VERSION})")
+endif()
+execute_process(COMMAND ${PKG_CONFIG} --cflags --libs libpool OUTPUT_VARIABLE flags
+  OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "pkg-config --cflags --libs libpool failed")
+endif()
+separate_arguments(flags UNIX_COMMAND "${flags}")
+execute_process(COMMAND ${CC} -std=c11 ${SOURCE_DIR}/tests/consumer/project/main.c ${flags} -lm
+  -o ${WORK_DIR}/consumer_pc RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cc with pkg-config's flags (${flags}) failed")
+endif()
+execute_process(COMMAND ${WORK_DIR}/consumer_pc RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message(STATUS "pkg-config: ${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the pkg-config consumer failed: ${rc} ${err}")
 endif()

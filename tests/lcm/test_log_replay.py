@@ -21,19 +21,19 @@ want = u.pool_sim_json(args.bin_dir, scenario, args.work_dir)
 listeners = len(u.udp_sockets())
 logger = subprocess.Popen(["lcm-logger", "-q", "-f", "--lcm-url=" + u.URL, log])
 u.wait_for_listeners(listeners + 1)  # lcm-logger prints nothing when it is ready
-live = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT"])
+live = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT", "POOL_SHOT2"])
 u.wait_for_listeners(listeners + 2)
 subprocess.run([os.path.join(args.bin_dir, "pool-sim"), scenario, "--lcm-url", u.URL, "-o",
                 os.path.join(args.work_dir, "logged.json")], check=True, timeout=60)
-original = live.collect_until(lambda m: any(ch == "POOL_SHOT" for ch, _ in m), 10)
+original = live.collect_until(lambda m: any(ch == "POOL_SHOT2" for ch, _ in m), 10)
 live.close()
 u.wait_until_drained()  # the logger has read every datagram; it writes them out on SIGINT
 time.sleep(0.1)
 logger.send_signal(signal.SIGINT)
 logger.wait(timeout=5)
-u.check(len(original) == len(want["events"]) + 1,
-        "live capture: %d messages, expected %d events + 1 shot" % (len(original),
-                                                                   len(want["events"])))
+u.check(len(original) == len(want["events"]) + 2,
+        "live capture: %d messages, expected %d events + the shot on POOL_SHOT and POOL_SHOT2"
+        % (len(original), len(want["events"])))
 
 # The log file holds exactly those messages, besides the LCM_SELF_TEST datagram liblcm sends
 # when a udpm:// instance starts (here the live capture's, when the logger is already listening).
@@ -43,7 +43,7 @@ u.check(logged == original, "log file: %d messages (%s), differ from the live ca
     len(logged), sorted({ch for ch, _ in logged_all})))
 
 # Replay at 10x and capture again.
-replayed_capture = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT"])
+replayed_capture = u.Collector(u.URL, ["POOL_EVENT", "POOL_SHOT", "POOL_SHOT2"])
 player = subprocess.run(["lcm-logplayer", "-s", "10", "--lcm-url=" + u.URL, log], timeout=60,
                         capture_output=True, text=True)
 u.check(player.returncode == 0, "lcm-logplayer exit %d: %s" % (player.returncode, player.stderr))
@@ -51,8 +51,9 @@ replayed = replayed_capture.collect_until(lambda m: len(m) >= len(original), 10)
 replayed_capture.close()
 u.check(replayed == original, "replay: %d messages, differ from the original %d" % (
     len(replayed), len(original)))
-if replayed:
-    shot = shot_t.decode(replayed[-1][1])
+shots = [data for ch, data in replayed if ch == "POOL_SHOT"]
+if shots:
+    shot = shot_t.decode(shots[-1])
     u.check([u.event_json(e) for e in shot.events] == want["events"],
             "replayed shot differs from pool-sim's result")
 print("logged and replayed %d messages" % len(replayed))

@@ -194,7 +194,7 @@ class Batch(unittest.TestCase):
         self.assertEqual([b.pos for b in final], [tuple(p) for p in res.pos[0].tolist()])
 
     def test_bad_input(self):
-        with self.assertRaisesRegex(ValueError, r"strikes\[1\]\.speed: nan"):
+        with self.assertRaisesRegex(ValueError, r"strikes\[1\]\.speed: must be a finite number, got nan"):
             lb.run(self.post, [(0, 1, 0, 0, 0, 0), (0, float("nan"), 0, 0, 0, 0)])
         with self.assertRaisesRegex(ValueError, r"strikes\[0\]\.ball"):
             lb.run(self.post, [(0.5, 1, 0, 0, 0, 0)])

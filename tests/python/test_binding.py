@@ -186,7 +186,8 @@ class Errors(unittest.TestCase):
         self.check(lambda: sim.add_ball(0, (1.0, 0.5), vel=(1.0, 0.0)), "POOL_ERR_INVALID_ARGUMENT",
                    "ball.vel")
         self.check(lambda: sim.add_ball(2**32, (1.0, 0.5)), "POOL_ERR_INVALID_ARGUMENT", "ball.id")
-        self.check(lambda: sim.add_ball(1.5, (1.0, 0.5)), "POOL_ERR_INVALID_ARGUMENT", "ball.id")
+        with self.assertRaisesRegex(TypeError, "ball.id: expected an int, got float 1.5"):
+            sim.add_ball(1.5, (1.0, 0.5))
         self.assertEqual(sim.ball_count, 0)
 
     def test_duplicate_id(self):

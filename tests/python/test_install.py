@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""pip install ./python in a fresh virtual environment: the package builds its own libpool.so,
-`import libpool` works from another directory with that bundled library, and a break's event
-list and a libpool.batch run equal the in-tree binding's bit for bit.
+"""pip install ./python in a fresh virtual environment: the package builds its own libpool.so
+and libpool_games.so, `import libpool` works from another directory with those bundled
+libraries, and a break's event list, a libpool.batch run, the break judged by libpool.game and a
+noisy strike equal the in-tree binding's bit for bit.
 
 Usage: test_install.py --source PYTHON_DIR --work DIR
 (run with the in-tree binding importable: PYTHONPATH holds python/, LIBPOOL_PATH the build's
@@ -23,7 +24,7 @@ SKIP = 77
 # comparison is bit for bit.
 PROBE = r"""
 import json, sys
-import libpool, libpool.batch
+import libpool, libpool.batch, libpool.game
 
 def ball(b):
     return [b.id, b.motion] + [x.hex() for x in b.pos + b.vel + b.omega]
@@ -32,6 +33,8 @@ with libpool.Sim(max_time=120.0) as sim:
     sim.rack("8ball", gap=1e-4)
     sim.break_strike(8.0)
     stop = sim.run()
+    judged = libpool.game.judge(sim, libpool.game.State.default("8ball")).to_dict()
+    noisy = [x.hex() for x in libpool.game.noisy_strike((2.0, 10.0, 0.0, 0.0, 0.0), "fastfiz", 7, 3)]
     events = [[e.time.hex(), e.type, list(e.balls), e.rail, e.pocket, [ball(b) for b in e.after]]
               for e in sim.events]
     layout = {"format": "libpool-scenario/1",
@@ -43,7 +46,8 @@ res = libpool.batch.run(layout, [(0, 1.0 + 0.5 * k, 37.0 * k, 2.0, 0.001 * k, -0
 batch = {k: getattr(res, k).tobytes().hex() for k in
          ("stop_reason", "events", "end_time", "first_hit", "pos", "state")}
 print(json.dumps({"library": libpool.library_path(), "module": libpool.__file__, "stop": stop,
-                  "events": events, "layout": layout, "batch": batch}))
+                  "events": events, "layout": layout, "batch": batch,
+                  "game": {"judged": judged, "noisy": noisy, "games_library": libpool.game.library_path()}}))
 """
 
 
@@ -120,13 +124,17 @@ def main():
     tree = json.loads(p.stdout)
     if os.path.realpath(tree["library"]) == os.path.realpath(bundled):
         sys.exit("test_install: the in-tree run used the installed library")
-    for key in ("stop", "events", "layout", "batch"):
+    games = os.path.join(site, "libpool", "libpool_games.so")
+    if os.path.realpath(installed["game"].pop("games_library")) != os.path.realpath(games):
+        sys.exit(f"test_install: libpool.game did not load the bundled {games}")
+    tree["game"].pop("games_library")
+    for key in ("stop", "events", "layout", "batch", "game"):
         if installed[key] != tree[key]:
             sys.exit(f"test_install: {key} differs between the installed package and the "
                      f"in-tree binding ({tree['library']})")
     n = len(tree["events"])
     print(f"test_install: OK: pip install {a.source} into a fresh venv; {bundled}; a break of "
-          f"{n} events and a 10-shot batch bit-identical to the in-tree binding "
+          f"{n} events, a 10-shot batch, the break judged by libpool.game and a noisy strike bit-identical to the in-tree binding "
           f"({tree['library']}); {time.monotonic() - start:.1f} s")
     return 0
 

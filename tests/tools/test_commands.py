@@ -332,7 +332,15 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
         self.assertTrue(stat.S_ISFIFO(os.lstat(fifo).st_mode))
 
     def test_unwritable_output_is_reported(self):
-        r = sim(write("ok.json", straight_shot()), "-o", os.path.join(ARGS.work, "no", "such", "dir.json"))
+        # Missing directories are created (a fresh clone's out/); a path through a regular file
+        # cannot be written and is reported.
+        fresh = os.path.join(ARGS.work, "fresh_out", "no", "such")
+        shutil.rmtree(os.path.join(ARGS.work, "fresh_out"), ignore_errors=True)
+        r = sim(write("ok.json", straight_shot()), "-o", os.path.join(fresh, "dir.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(os.path.isfile(os.path.join(fresh, "dir.json")))
+        blocker = write("blocker", "x")
+        r = sim(write("ok.json", straight_shot()), "-o", os.path.join(blocker, "such", "dir.json"))
         self.assertNotEqual(r.returncode, 0)
         self.assertIn(b"dir.json", r.stderr)
 
@@ -384,7 +392,8 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("infinity", json.dumps(straight_shot()).replace('"speed": 1.0', '"speed": 1e999'), "(document)"),
             ("huge", with_(lambda d: d["strike"].update(speed=1e300)), "strike.speed"),
             ("huge_pos", with_(ball(1, pos=[1e200, 0.5])), "balls[1].pos[0]"),
-            ("table_string", with_(lambda d: d.update(table="wpa-9ft")), "table"),
+            ("table_number", with_(lambda d: d.update(table=9)), "table: must be a preset name"),
+            ("table_string", with_(lambda d: d.update(table="wpa-10ft")), "table: unknown preset"),
             ("preset", with_(lambda d: d.update(table={"preset": "snooker"})), "table.preset"),
             ("table_width", with_(lambda d: d.update(table={"width": -1})), "table.width"),
             ("airborne_type", with_(lambda d: d.update(options={"airborne": 1})), "options.airborne"),
@@ -606,10 +615,13 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
                 self.assertEqual(r.returncode, 2, args)
                 assert_printable(self, r.stderr, repr(args))
                 self.assertTrue(b"\\u001b" in r.stderr or b"\\u0007" in r.stderr, r.stderr)
-        r = sim(write("ok_escape.json", straight_shot()), "-o", os.path.join(ARGS.work, "no", "\x1b.json"))
+        # Missing directories are created; one under a regular file cannot be.
+        write("not_a_directory", "x")
+        r = sim(write("ok_escape.json", straight_shot()), "-o",
+                os.path.join(ARGS.work, "not_a_directory", "\x1b.json"))
         self.assertNotEqual(r.returncode, 0)
         assert_printable(self, r.stderr, "output name")
-        self.assertIn(b"\\u001b.json: No such file or directory", r.stderr)
+        self.assertIn(b"\\u001b.json: Not a directory", r.stderr)
 
     def test_valid_variants(self):
         # Explicit table fields over a preset, parameters, a moving ball without a strike, 3D pos.

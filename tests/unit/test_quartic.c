@@ -25,10 +25,7 @@
 
 static const double tq_u = 0x1p-53;
 
-// The published cases: tests/CMakeLists.txt points POOL_QUARTIC_CASES_FILE at the canonical
-// ../shared/data/quartic_public_cases.json beside the repository when it exists at configure time
-// (then POOL_QUARTIC_CASES_COPY names the copy in tests/data, which must be byte-identical), else
-// at the copy.
+// The published cases, in the repository's tests/data.
 #ifndef POOL_QUARTIC_CASES_FILE
 #define POOL_QUARTIC_CASES_FILE POOL_TEST_DATA_DIR "/quartic_public_cases.json"
 #endif
@@ -326,24 +323,6 @@ static void test_public_cases(void **state) {
 	assert_int_equal(ill, 19);
 	assert_int_equal(ill_kappa, 10);
 	assert_int_equal(ill_pair, 13);
-}
-
-// The copy in tests/data must be the canonical shared file byte for byte (when both exist at
-// configure time; ctest also runs quartic_public_cases_copy for the same check).
-static void test_public_cases_copy(void **state) {
-	(void)state;
-#ifdef POOL_QUARTIC_CASES_COPY
-	long n_shared, n_copy;
-	char *shared = tq_read_file(POOL_QUARTIC_CASES_FILE, &n_shared);
-	char *copy = tq_read_file(POOL_QUARTIC_CASES_COPY, &n_copy);
-	if (n_shared != n_copy || memcmp(shared, copy, (size_t)n_shared) != 0)
-		fail_msg("%s differs from the canonical %s: copy the shared file over it", POOL_QUARTIC_CASES_COPY,
-		         POOL_QUARTIC_CASES_FILE);
-	free(shared);
-	free(copy);
-#else
-	print_message("  no shared quartic_public_cases.json at configure time: only the copy is used\n");
-#endif
 }
 
 // --- Billiards degenerate cases ---
@@ -1399,7 +1378,6 @@ static void test_subnormal_roots(void **state) {
 int main(void) {
 	const struct CMUnitTest tests[] = {
 	    cmocka_unit_test(test_public_cases),
-	    cmocka_unit_test(test_public_cases_copy),
 	    cmocka_unit_test(test_equal_accelerations),
 	    cmocka_unit_test(test_tiny_leading_coefficient),
 	    cmocka_unit_test(test_zero_constant_term),

@@ -320,7 +320,7 @@ static void test_validation(void **state) {
 	rising.vel = (pool_vec3){1.0, 0.0, 3.0}; // planar mode cannot honour v_z: refused, not dropped
 	assert_int_equal(pool_sim_add_ball(sim, &rising, &err), POOL_ERR_INVALID_ARGUMENT);
 	assert_string_equal(err.message,
-	                    "balls[2].vel: vertical velocity 3 m/s needs airborne motion (options.airborne)");
+	                    "balls[2].vel: vertical velocity 3 m/s needs airborne motion (def.airborne)");
 	rising.vel.z = 1e-12; // rounding noise of a caller's own arithmetic is accepted
 	assert_int_equal(pool_sim_add_ball(sim, &rising, &err), POOL_OK);
 	assert_int_equal(pool_sim_ball_count(sim), 3);

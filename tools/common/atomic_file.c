@@ -38,9 +38,42 @@ static int write_in_place(const char *path, const char *data, size_t length, cha
 	return 0;
 }
 
+// Creates the directories leading to path that do not exist yet (mkdir -p of its dirname), so a
+// command writes out/break.json on a fresh clone. Returns 0, or -1 with errno set.
+static int make_parents(const char *path) {
+	char *dir = strdup(path);
+	if (!dir)
+		return -1;
+	char *slash = strrchr(dir, '/');
+	int status = 0;
+	if (slash && slash != dir) {
+		*slash = '\0';
+		for (char *p = dir + 1; status == 0; ++p) {
+			if (*p != '/' && *p != '\0')
+				continue;
+			const char saved = *p;
+			*p = '\0';
+			struct stat st;
+			if (stat(dir, &st) != 0 && (errno != ENOENT || mkdir(dir, 0777) != 0) && errno != EEXIST)
+				status = -1;
+			*p = saved;
+			if (saved == '\0')
+				break;
+		}
+	}
+	const int saved_errno = errno;
+	free(dir);
+	errno = saved_errno;
+	return status;
+}
+
 int pool_write_file_atomic(const char *path, const char *data, size_t length, char *err,
                            size_t err_size) {
 	struct stat st;
+	if (make_parents(path) != 0) {
+		path_error(err, err_size, path, strerror(errno));
+		return -1;
+	}
 	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode))
 		return write_in_place(path, data, length, err, err_size);
 	// Through a symbolic link, replace the file it points to, not the link.

@@ -9,7 +9,8 @@ extern "C" {
 #endif
 
 /// Writes length bytes to path through a temporary file in the same directory renamed over it,
-/// so on failure no (partial) file is left. Returns 0, or -1 with a message in err.
+/// so on failure no (partial) file is left; creates the directories leading to path that are
+/// missing. Returns 0, or -1 with a message in err.
 int pool_write_file_atomic(const char *path, const char *data, size_t length, char *err,
                            size_t err_size);
 

@@ -3,6 +3,7 @@
 #include "batch_shot.h"
 
 #include <jansson.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -99,4 +100,26 @@ bool pool_batch_first_hit(const pool_sim *sim, int32_t ball, int32_t *hit) {
 			}
 	}
 	return false;
+}
+
+static double noisy(double nominal, double sd, uint64_t seed, uint64_t sample, uint32_t k) {
+	return sd > 0.0 ? nominal + sd * pool_noise_normal(seed, sample, k) : nominal;
+}
+
+pool_batch_strike pool_batch_noisy(const pool_batch_strike *nominal, const pool_noise *noise, uint64_t seed,
+                                   uint64_t sample) {
+	pool_batch_strike s = *nominal;
+	s.speed = noisy(nominal->speed, noise->speed, seed, sample, 0);
+	s.phi = noisy(nominal->phi, noise->phi / POOL_BATCH_DEG, seed, sample, 1);
+	s.theta = fabs(noisy(nominal->theta, noise->theta / POOL_BATCH_DEG, seed, sample, 2));
+	s.a = noisy(nominal->a, noise->a, seed, sample, 3);
+	s.b = noisy(nominal->b, noise->b, seed, sample, 4);
+	return s;
+}
+
+bool pool_batch_judge(const pool_scenario *layout, const pool_sim *sim, pool_game_result *result) {
+	if (!layout->has_game)
+		return false;
+	const pool_game_shot shot = pool_game_shot_of_sim(sim);
+	return pool_game_judge(&layout->game, &shot, &layout->def.table, result, NULL) == POOL_OK;
 }

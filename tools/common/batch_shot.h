@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "pool/game.h"
+#include "pool/noise.h"
 #include "pool/pool.h"
 #include "scenario.h"
 
@@ -43,6 +45,17 @@ int pool_batch_load_layout(const char *path, size_t max_input, pool_scenario *la
 /// strike (*internal false) or failed (out of memory, an internal error: *internal true).
 bool pool_batch_shoot(const pool_scenario *layout, const pool_batch_strike *s, pool_sim **sim,
                       pool_ball_state *final, char *error, size_t error_size, bool *internal);
+
+/// Strike `nominal` with noise: sample `sample` of `seed` (pool_noise_normal's deviates k = 0..4
+/// for speed, phi, theta, a, b), each parameter nominal + sd * z in the file's units (phi and
+/// theta in degrees: the noise's radians divided by POOL_BATCH_DEG), exactly nominal where sd is
+/// 0, theta folded to |theta|. pool-batch --noise and pool-sensitivity draw their strikes here.
+pool_batch_strike pool_batch_noisy(const pool_batch_strike *nominal, const pool_noise *noise, uint64_t seed,
+                                   uint64_t sample);
+
+/// Judges the shot pool_batch_shoot just ran on a layout with a "game": false when the layout
+/// has none or the rules refuse the shot.
+bool pool_batch_judge(const pool_scenario *layout, const pool_sim *sim, pool_game_result *result);
 
 /// The id of the first ball the struck ball hits (ball_ball or link_begin), or false.
 bool pool_batch_first_hit(const pool_sim *sim, int32_t ball, int32_t *hit);

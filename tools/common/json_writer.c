@@ -158,6 +158,11 @@ void pool_jw_string(pool_jw *w, const char *value) {
 	string_body(w, value ? value : "");
 }
 
+void pool_jw_null(pool_jw *w) {
+	before_item(w);
+	puts_(w, "null");
+}
+
 void pool_jw_bool(pool_jw *w, bool value) {
 	before_item(w);
 	puts_(w, value ? "true" : "false");

@@ -50,6 +50,8 @@ void pool_jw_number(pool_jw *w, double value);
 void pool_jw_int(pool_jw *w, int64_t value);
 /// Writes a string, escaped.
 void pool_jw_string(pool_jw *w, const char *value);
+/// Writes null.
+void pool_jw_null(pool_jw *w);
 /// Writes true or false.
 void pool_jw_bool(pool_jw *w, bool value);
 /// Writes [x, y, z] on one line.

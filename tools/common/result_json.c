@@ -1,5 +1,6 @@
 // The libpool-result/1 writer (docs/interfaces.md): events with the after-states of their balls,
 // every ball at the end, statistics, and optionally the trajectories sampled for plots.
+#include "game_json.h"
 #include "json_writer.h"
 #include "models_json.h"
 #include "scenario.h"
@@ -10,16 +11,6 @@
 
 // Sampling beyond this many grid instants would make files nobody can plot; dt is widened.
 #define POOL_RESULT_MAX_SAMPLES 20000
-
-const char *pool_stop_reason_name(pool_stop_reason reason) {
-	switch (reason) {
-	case POOL_STOP_NONE: return "none";
-	case POOL_STOP_REST: return "rest";
-	case POOL_STOP_MAX_TIME: return "max_time";
-	case POOL_STOP_MAX_EVENTS: return "max_events";
-	}
-	return "unknown";
-}
 
 static void write_state(pool_jw *w, const pool_ball_state *b) {
 	pool_jw_object(w, true);
@@ -33,6 +24,39 @@ static void write_state(pool_jw *w, const pool_ball_state *b) {
 	pool_jw_vec3(w, b->omega);
 	pool_jw_key(w, "state");
 	pool_jw_string(w, pool_motion_name(b->motion));
+	pool_jw_end(w, '}');
+}
+
+// The parameters of the closed forms (docs/physics.md), by their scenario names.
+static void write_params(pool_jw *w, const pool_params *p) {
+	const struct {
+		const char *name;
+		double value;
+	} fields[] = {
+		{"g", p->g},
+		{"mu_slide", p->mu_slide},
+		{"mu_roll", p->mu_roll},
+		{"mu_spin", p->mu_spin},
+		{"mu_ball", p->mu_ball},
+		{"e_ball", p->e_ball},
+		{"mu_cushion", p->mu_cushion},
+		{"e_cushion", p->e_cushion},
+		{"mu_table", p->mu_table},
+		{"e_table", p->e_table},
+		{"ball_radius", p->ball_radius},
+		{"ball_mass", p->ball_mass},
+		{"cue_mass", p->cue_mass},
+		{"throw_a", p->throw_a},
+		{"throw_b", p->throw_b},
+		{"throw_c", p->throw_c},
+		{"cue_end_mass", p->cue_end_mass},
+	};
+	pool_jw_key(w, "params");
+	pool_jw_object(w, true);
+	for (size_t i = 0; i < sizeof fields / sizeof fields[0]; ++i) {
+		pool_jw_key(w, fields[i].name);
+		pool_jw_number(w, fields[i].value);
+	}
 	pool_jw_end(w, '}');
 }
 
@@ -254,10 +278,28 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 		pool_jw_end(&w, '}');
 		pool_jw_key(&w, "ball_radius");
 		pool_jw_number(&w, options->def->params.ball_radius);
+		write_params(&w, &options->def->params);
 		if (!pool_models_are_default(&options->def->models))
 			pool_jw_models(&w, &options->def->models);
 	}
+	// Every ball at t = 0: with the events' after-states, the start of each closed-form segment
+	// (docs/interfaces.md), from which a reader (pool-view) evaluates any instant exactly.
+	if (balls > 0 && pool_sim_state_at(sim, 0.0, final_states) != POOL_OK) {
+		pool_jw_discard(&w);
+		free(final_states);
+		return NULL;
+	}
+	pool_jw_key(&w, "initial");
+	pool_jw_array(&w, false);
+	for (int i = 0; i < balls; ++i)
+		write_state(&w, &final_states[i]);
+	pool_jw_end(&w, ']');
 	write_events(&w, sim, events, count);
+	if (balls > 0 && pool_sim_state_at(sim, end, final_states) != POOL_OK) {
+		pool_jw_discard(&w);
+		free(final_states);
+		return NULL;
+	}
 	pool_jw_key(&w, "final");
 	pool_jw_array(&w, false);
 	for (int i = 0; i < balls; ++i)
@@ -265,7 +307,16 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	pool_jw_end(&w, ']');
 	write_stats(&w, sim, events, count, final_states, balls, end);
 	bool ok = true;
-	if (options->sample_dt > 0.0 && isfinite(options->sample_dt) && balls > 0)
+	if (options->game && options->def) {
+		pool_game_shot shot = pool_game_shot_of_sim(sim);
+		pool_game_result judged;
+		ok = pool_game_judge(options->game, &shot, &options->def->table, &judged, NULL) == POOL_OK;
+		if (ok) {
+			pool_jw_key(&w, "game");
+			pool_jw_game_result(&w, options->game->rules, &judged);
+		}
+	}
+	if (ok && options->sample_dt > 0.0 && isfinite(options->sample_dt) && balls > 0)
 		ok = write_samples(&w, sim, events, count, options->sample_dt, end);
 	pool_jw_end(&w, '}');
 	free(final_states);

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "game_json.h"
 #include "models_json.h"
 #include "read_input.h"
 #include "text_escape.h"
@@ -46,10 +47,31 @@ static bool starts_with_path(const char *message, const char *path) {
 	       (message[n] == '.' || message[n] == ':' || message[n] == '[');
 }
 
+// The library names the fields of its pool_sim_def "def.airborne", "def.max_time"...; a scenario
+// file holds them in "options".
+static const char *json_field_names(const char *message, char *out, size_t size) {
+	static const char from[] = "def.", to[] = "options.";
+	size_t n = 0;
+	for (const char *m = message; *m && n + 1 < size;) {
+		if (strncmp(m, from, sizeof from - 1) == 0 && (m == message || m[-1] == ' ' || m[-1] == '(') &&
+		    n + sizeof to < size) {
+			memcpy(out + n, to, sizeof to - 1);
+			n += sizeof to - 1;
+			m += sizeof from - 1;
+		} else {
+			out[n++] = *m++;
+		}
+	}
+	out[n] = '\0';
+	return out;
+}
+
 static int fail_lib(parse_ctx *ctx, const char *path, pool_result code, const pool_error *e) {
 	static const char *const roots[] = {"table", "params", "balls", "strike", "options", "models",
 	                                    NULL};
-	const char *message = e->message[0] ? e->message : pool_result_str(code);
+	char renamed[sizeof e->message + 64];
+	const char *message = json_field_names(e->message[0] ? e->message : pool_result_str(code), renamed,
+	                                       sizeof renamed);
 	if (starts_with_path(message, path))
 		return fail(ctx, "%s", message);
 	for (const char *const *root = roots; *root; ++root)
@@ -131,8 +153,17 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 	*def = pool_default_table_def();
 	if (!table)
 		return 0;
+	// "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}.
+	if (json_is_string(table)) {
+		if (pool_table_preset(json_string_value(table), def) != POOL_OK) {
+			char shown[POOL_ESCAPE_SHORT];
+			pool_escape_text(shown, sizeof shown, json_string_value(table), json_string_length(table));
+			return fail(ctx, "table: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)", shown);
+		}
+		return 0;
+	}
 	if (!json_is_object(table))
-		return fail(ctx, "table: must be an object");
+		return fail(ctx, "table: must be a preset name or an object");
 	if (check_fields(ctx, table, "table", fields))
 		return -1;
 	json_t *preset = json_object_get(table, "preset");
@@ -396,9 +427,8 @@ static int fail_lib_ball(parse_ctx *ctx, int index, pool_result code, const pool
 	return fail_lib(ctx, path, code, e);
 }
 
-// Airborne scenarios (options.airborne = true): the parse does not depend on the library
-// simulating airborne motion (pool_sim_create refuses it until it does; pool_scenario_setup then
-// returns that error). The rules the library has for planar balls are applied to each ball's
+// Airborne scenarios (options.airborne = true): the rules the library has for planar balls are
+// applied to each ball's
 // projection on the cloth, one ball per throw-away planar simulation (finite numbers, speed
 // limits, off the table), and the 3D rules here: a centre below z = R (beyond
 // POOL_TOUCH_TOLERANCE) is under the cloth, balls may not interpenetrate in 3D (a ball above
@@ -545,9 +575,24 @@ static int check_with_sim(parse_ctx *ctx, const pool_scenario *s) {
 	return status;
 }
 
+// "game" (docs/interfaces.md "Games"): the rules judge the struck shot, on a table of their balls.
+static int parse_game(parse_ctx *ctx, json_t *game, pool_scenario *s) {
+	if (!game)
+		return 0;
+	if (pool_game_json_parse(game, "game", &s->game, ctx->err, ctx->err_size))
+		return -1;
+	pool_error e;
+	if (pool_game_check_balls(&s->game, s->balls, s->ball_count, &e) != POOL_OK)
+		return fail(ctx, "%s", e.message);
+	if (!s->has_strike)
+		return fail(ctx, "game: the rules judge a struck shot: the scenario needs a strike");
+	s->has_game = true;
+	return 0;
+}
+
 static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 	static const char *const fields[] = {"format", "name", "description", "table", "params",
-	                                     "balls", "strike", "options", "models", NULL};
+	                                     "balls", "strike", "options", "models", "game", NULL};
 	if (!json_is_object(root))
 		return fail(ctx, "(document): must be a JSON object");
 	if (check_fields(ctx, root, "", fields))
@@ -593,6 +638,8 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 
 	json_t *strike = json_object_get(root, "strike");
 	if (strike && parse_strike(ctx, strike, s))
+		return -1;
+	if (parse_game(ctx, json_object_get(root, "game"), s))
 		return -1;
 	return s->def.airborne ? check_airborne(ctx, s) : check_with_sim(ctx, s);
 }

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "pool/game.h"
 #include "pool/pool.h"
 
 #ifdef __cplusplus
@@ -22,6 +23,8 @@ typedef struct pool_scenario {
 	bool has_strike;         ///< whether a strike is applied at t = 0
 	int strike_ball;         ///< id of the struck ball
 	pool_strike strike;      ///< cue parameters (radians)
+	bool has_game;           ///< "game" given: the shot is judged by these rules (needs a strike)
+	pool_game_state game;    ///< the rules and the state before the shot (game_json.h)
 } pool_scenario;
 
 /// Parses and validates a scenario document. Returns 0, or -1 with a message naming the field
@@ -29,8 +32,9 @@ typedef struct pool_scenario {
 /// Planar scenarios (options.airborne false) are checked with the library's own rules (a ball
 /// must sit on the cloth, z = R, with no vertical velocity). Airborne scenarios accept 3D
 /// positions with z >= R (within POOL_TOUCH_TOLERANCE; "balls[i].pos: below the cloth") and
-/// vertical velocities, refuse 3D interpenetration, and do not need the library to simulate
-/// airborne motion: until it does, pool_scenario_setup returns its "options.airborne" error.
+/// vertical velocities and refuse 3D interpenetration. A "table" may be a preset name. The
+/// library's messages about its def (def.airborne, def.max_time...) are reported with the
+/// file's names (options.airborne...).
 int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
                         size_t err_size);
 
@@ -57,14 +61,13 @@ typedef struct pool_result_options {
 	bool pretty;      ///< indent the JSON
 	const pool_sim_def *def; ///< optional; when set, "table" and "ball_radius" are written too,
 	                         ///< and "models" when they are not the defaults (models_json.h)
+	const pool_game_state *game; ///< optional; when set, the shot is judged under these rules and
+	                             ///< "game" is written after "stats" (docs/interfaces.md "Games")
 } pool_result_options;
 
 /// The libpool-result/1 document of a finished (or stopped) simulation, malloc'd, NUL-terminated;
 /// NULL on allocation failure. Byte-identical for identical simulations.
 char *pool_result_json(const pool_sim *sim, const pool_result_options *options);
-
-/// Name of a stop reason as written in "stats.stop_reason" ("rest", "max_time", ...).
-const char *pool_stop_reason_name(pool_stop_reason reason);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,7 @@
 // Conversion between libpool simulations and pool_lcm messages (see lcm_convert.h).
 #include "lcm_convert.h"
 
+#include "game_json.h"
 #include "scenario.h"
 
 #include <stdio.h>
@@ -313,4 +314,65 @@ int pool_lcm_request_decode(const void *data, size_t size, pool_lcm_shot_request
 		return -1;
 	}
 	return 0;
+}
+
+int pool_lcm_shot2_fill(const pool_lcm_shot_t *shot, const pool_sim *sim, const pool_game_state *game,
+                        const pool_table_def *table, pool_lcm_shot2_t *out)
+{
+	memset(out, 0, sizeof *out);
+	out->utime = shot->utime;
+	out->shot = *shot;
+	out->game_rules = out->game_outcome = out->game_reason = out->game_json = pool_lcm_empty;
+	if (game == NULL || sim == NULL) {
+		return 0;
+	}
+	const pool_game_shot judged_shot = pool_game_shot_of_sim(sim);
+	pool_game_result r;
+	if (pool_game_judge(game, &judged_shot, table, &r, NULL) != POOL_OK) {
+		return -1;
+	}
+	out->game_rules = pool_lcm_name_or_empty(pool_game_rules_name(game->rules));
+	out->game_legal = r.legal;
+	out->game_outcome = pool_lcm_name_or_empty(pool_game_outcome_name(r.outcome));
+	out->game_reason = pool_lcm_name_or_empty(pool_game_reason_name(r.reason));
+	out->game_ball_in_hand = r.ball_in_hand;
+	out->game_points = r.points;
+	out->game_has_first_hit = r.first_hit != POOL_GAME_NO_BALL;
+	out->game_first_hit = out->game_has_first_hit ? r.first_hit : 0;
+	out->game_rails_after_contact = r.rails_after_contact;
+	out->game_fouls = calloc(POOL_GAME_FOUL_KINDS, sizeof *out->game_fouls);
+	out->game_pocketed = calloc(POOL_GAME_MAX_BALLS, sizeof *out->game_pocketed);
+	pool_jw w;
+	pool_jw_init(&w, false);
+	pool_jw_game_result(&w, game->rules, &r);
+	char *json = pool_jw_finish(&w);
+	if (out->game_fouls == NULL || out->game_pocketed == NULL || json == NULL) {
+		free(json);
+		pool_lcm_shot2_release(out);
+		return -1;
+	}
+	json[strcspn(json, "\n")] = '\0';
+	out->game_json = json;
+	for (int k = 0; k < POOL_GAME_FOUL_KINDS; ++k) {
+		if (r.fouls & (1u << k)) {
+			out->game_fouls[out->game_num_fouls++] = (char *)pool_game_foul_name(1u << k);
+		}
+	}
+	for (int i = 0; i < r.pocketed_count; ++i) {
+		out->game_pocketed[out->game_num_pocketed++] = r.pocketed[i];
+	}
+	return 0;
+}
+
+void pool_lcm_shot2_release(pool_lcm_shot2_t *msg)
+{
+	free(msg->game_fouls);
+	free(msg->game_pocketed);
+	if (msg->game_json != pool_lcm_empty) {
+		free(msg->game_json);
+	}
+	msg->game_fouls = NULL;
+	msg->game_pocketed = NULL;
+	msg->game_json = pool_lcm_empty;
+	msg->game_num_fouls = msg->game_num_pocketed = 0;
 }

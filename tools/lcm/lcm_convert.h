@@ -7,10 +7,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "pool/game.h"
 #include "pool/pool.h"
 #include "pool_lcm_ball_state_t.h"
 #include "pool_lcm_event_t.h"
 #include "pool_lcm_shot_request_t.h"
+#include "pool_lcm_shot2_t.h"
 #include "pool_lcm_shot_t.h"
 #include "pool_lcm_table_state_t.h"
 
@@ -22,6 +24,8 @@ extern "C" {
 #define POOL_LCM_CHANNEL_SHOT_REQUEST "POOL_SHOT_REQUEST"
 /// Channel of finished shots (shot_t).
 #define POOL_LCM_CHANNEL_SHOT "POOL_SHOT"
+/// Channel of finished shots with the later fields (shot2_t), beside every shot_t on POOL_SHOT.
+#define POOL_LCM_CHANNEL_SHOT2 "POOL_SHOT2"
 /// Channel of events as they are produced (event_t).
 #define POOL_LCM_CHANNEL_EVENT "POOL_EVENT"
 /// Channel of real-time playback frames (table_state_t).
@@ -75,6 +79,15 @@ int pool_lcm_shot_fill_error(int64_t shot_id, int64_t request_id, int64_t utime,
 
 /// Frees what pool_lcm_shot_fill / pool_lcm_shot_fill_error allocated; safe on a zeroed message.
 void pool_lcm_shot_release(pool_lcm_shot_t *msg);
+
+/// Fills a shot2_t around shot (borrowed: out->shot is a shallow copy, so shot must outlive out),
+/// with the verdict of the rules when game is not NULL: the shot sim ran judged under game on
+/// table. Returns 0, or -1 when memory runs out or the rules refuse the shot.
+int pool_lcm_shot2_fill(const pool_lcm_shot_t *shot, const pool_sim *sim, const pool_game_state *game,
+                        const pool_table_def *table, pool_lcm_shot2_t *out);
+
+/// Frees what pool_lcm_shot2_fill allocated (the game fields, not the borrowed shot).
+void pool_lcm_shot2_release(pool_lcm_shot2_t *msg);
 
 /// Fills a playback frame: every ball at simulated time t (s), which the sim must have reached.
 int pool_lcm_table_state_fill(const pool_sim *sim, double t, int64_t shot_id, int64_t utime,

@@ -202,11 +202,27 @@ static bool stop_now(server_state *s)
 	return pool_lcm_stop_requested() || atomic_load(&s->stopping);
 }
 
-static void publish_shot(server_state *s, const pool_lcm_shot_t *shot, bool is_error)
+/// The rules a request's scenario asked for ("game"), to judge its shot in the shot2_t answer.
+typedef struct shot_game {
+	const pool_sim *sim;        // the shot, or NULL (an error answer)
+	const pool_game_state *game; // NULL without a game
+	const pool_table_def *table;
+} shot_game;
+
+// Publishes the answer on POOL_SHOT, and the same with the later fields (shot2_t) on POOL_SHOT2.
+static void publish_shot(server_state *s, const pool_lcm_shot_t *shot, bool is_error, const shot_game *g)
 {
+	pool_lcm_shot2_t shot2;
+	bool converted = pool_lcm_shot2_fill(shot, g ? g->sim : NULL, g ? g->game : NULL, g ? g->table : NULL,
+	                                     &shot2) == 0 ||
+	                 pool_lcm_shot2_fill(shot, NULL, NULL, NULL, &shot2) == 0;
 	pthread_mutex_lock(&s->publish_lock);
 	bool failed = pool_lcm_shot_t_publish(s->lcm, POOL_LCM_CHANNEL_SHOT, shot) != 0;
+	failed = (converted && pool_lcm_shot2_t_publish(s->lcm, POOL_LCM_CHANNEL_SHOT2, &shot2) != 0) || failed;
 	pthread_mutex_unlock(&s->publish_lock);
+	if (converted) {
+		pool_lcm_shot2_release(&shot2);
+	}
 	if (failed) {
 		fprintf(stderr, "pool-shot-server: could not publish the answer to request %lld\n",
 		        (long long)shot->request_id);
@@ -235,7 +251,7 @@ static void answer_error(server_state *s, int64_t shot_id, int64_t request_id, c
 		pthread_mutex_unlock(&s->lock);
 		return;
 	}
-	publish_shot(s, &shot, true);
+	publish_shot(s, &shot, true, NULL);
 	pool_lcm_shot_release(&shot);
 }
 
@@ -283,7 +299,7 @@ static run_outcome run_budgeted(worker *w, double deadline, double queued_s, cha
 
 // Publishes the shot, or, when its encoding would exceed --max-answer-bytes, an answer carrying
 // the final states (when they fit) and an error giving the size.
-static void answer_shot(worker *w, int64_t shot_id, int64_t request_id)
+static void answer_shot(worker *w, int64_t shot_id, int64_t request_id, const shot_game *g)
 {
 	server_state *s = w->s;
 	pool_lcm_shot_t shot;
@@ -300,7 +316,7 @@ static void answer_shot(worker *w, int64_t shot_id, int64_t request_id)
 			answer_error(s, shot_id, request_id, "out of memory converting the shot");
 			return;
 		}
-		publish_shot(s, &shot, false);
+		publish_shot(s, &shot, false, g);
 		pool_lcm_shot_release(&shot);
 		return;
 	}
@@ -329,7 +345,7 @@ static void answer_shot(worker *w, int64_t shot_id, int64_t request_id)
 	}
 	fprintf(stderr, "pool-shot-server: request %lld: %s\n", (long long)request_id, message);
 	atomic_fetch_add(&s->oversized, 1);
-	publish_shot(s, &shot, true);
+	publish_shot(s, &shot, true, g);
 	pool_lcm_shot_release(&shot);
 }
 
@@ -393,6 +409,10 @@ static void answer_request(worker *w, const queued_request *q)
 	}
 	pool_error perr = {{0}};
 	pool_result r = pool_scenario_setup(&scenario, &w->sim, &perr);
+	// The game is judged after the run: keep it (the scenario's balls are freed now).
+	const pool_game_state game = scenario.game;
+	const pool_table_def table = scenario.def.table;
+	const bool has_game = scenario.has_game;
 	pool_scenario_free(&scenario);
 	if (r != POOL_OK) {
 		answer_error(s, shot_id, request_id, perr.message[0] ? perr.message : pool_result_str(r));
@@ -406,9 +426,11 @@ static void answer_request(worker *w, const queued_request *q)
 		outcome = RUN_OVER_TIME; // over budget, like the time limit
 	}
 	switch (outcome) {
-	case RUN_DONE:
-		answer_shot(w, shot_id, request_id);
+	case RUN_DONE: {
+		const shot_game g = {w->sim, has_game ? &game : NULL, &table};
+		answer_shot(w, shot_id, request_id, &g);
 		break;
+	}
 	case RUN_FAILED:
 		answer_error(s, shot_id, request_id, err);
 		break;

@@ -23,6 +23,9 @@ struct pool_lcm_sim_publisher {
 	long next_frame;         // index of the next playback frame (t = index / playback_hz)
 	struct timespec start;   // wall clock (monotonic) of simulated t = 0
 	bool started;
+	bool has_game;           // judge the shot in shot2_t (pool_lcm_sim_publisher_set_game)
+	pool_game_state game;
+	pool_table_def table;
 	char failure[256];       // first failure, reported by finish
 };
 
@@ -147,8 +150,19 @@ int pool_lcm_sim_publisher_finish(pool_lcm_sim_publisher *p, const pool_sim *sim
 	pool_lcm_shot_t shot;
 	if (pool_lcm_shot_fill(sim, p->shot_id, 0, pool_lcm_utime_now(), &shot) != 0) {
 		pool_lcm_fail(p, "could not convert the shot");
-	} else if (pool_lcm_shot_t_publish(p->lcm, POOL_LCM_CHANNEL_SHOT, &shot) != 0) {
-		pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_SHOT);
+	} else {
+		if (pool_lcm_shot_t_publish(p->lcm, POOL_LCM_CHANNEL_SHOT, &shot) != 0) {
+			pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_SHOT);
+		}
+		pool_lcm_shot2_t shot2;
+		if (pool_lcm_shot2_fill(&shot, sim, p->has_game ? &p->game : NULL, &p->table, &shot2) != 0) {
+			pool_lcm_fail(p, "could not convert the shot for " POOL_LCM_CHANNEL_SHOT2);
+		} else {
+			if (pool_lcm_shot2_t_publish(p->lcm, POOL_LCM_CHANNEL_SHOT2, &shot2) != 0) {
+				pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_SHOT2);
+			}
+			pool_lcm_shot2_release(&shot2);
+		}
 	}
 	pool_lcm_shot_release(&shot);
 	if (p->failure[0] != '\0') {
@@ -156,6 +170,16 @@ int pool_lcm_sim_publisher_finish(pool_lcm_sim_publisher *p, const pool_sim *sim
 		return -1;
 	}
 	return 0;
+}
+
+void pool_lcm_sim_publisher_set_game(pool_lcm_sim_publisher *p, const pool_game_state *game,
+                                     const pool_table_def *table)
+{
+	p->has_game = game != NULL;
+	if (game != NULL) {
+		p->game = *game;
+		p->table = *table;
+	}
 }
 
 void pool_lcm_sim_publisher_destroy(pool_lcm_sim_publisher *p)

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 
+#include "pool/game.h"
 #include "pool/pool.h"
 
 #ifdef __cplusplus
@@ -31,8 +32,13 @@ pool_lcm_sim_publisher *pool_lcm_sim_publisher_create(const char *url, double pl
 /// Call it for every event in order, the strike included, right after the sim produced it.
 void pool_lcm_sim_publisher_event(const pool_sim *sim, const pool_event *event, void *user);
 
+/// The rules to judge the shot under (a scenario's "game") for the shot2_t published on
+/// POOL_SHOT2; game NULL: none (the default).
+void pool_lcm_sim_publisher_set_game(pool_lcm_sim_publisher *publisher, const pool_game_state *game,
+                                     const pool_table_def *table);
+
 /// After the last event: the remaining playback frames up to pool_sim_time, then the shot on
-/// POOL_SHOT. Returns 0, or -1 with a message in err (the first failure of the whole shot).
+/// POOL_SHOT and on POOL_SHOT2 (shot2_t: the same with the game's verdict). Returns 0, or -1 with a message in err (the first failure of the whole shot).
 int pool_lcm_sim_publisher_finish(pool_lcm_sim_publisher *publisher, const pool_sim *sim,
                                   char *err, size_t err_size);
 

@@ -1,7 +1,6 @@
-// The samples of a sensitivity study, all drawn before any shot runs, in sample order, from one
-// seeded GSL generator: the study's numbers then depend on the seed alone, never on the threads.
-#include <gsl/gsl_randist.h>
-#include <gsl/gsl_rng.h>
+// The samples of a sensitivity study, drawn before any shot runs from libpool games' counter-based
+// normal deviates (pool/noise.h): sample i depends on the seed and i alone, never on the threads,
+// and its strike is pool-batch --noise's strike i for the same noise and seed (batch_shot.h).
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,13 +9,7 @@
 
 const char *const sens_cue_names[SENS_CUE_COUNT] = {"speed", "phi", "theta", "a", "b"};
 
-// Mersenne Twister (Matsumoto and Nishimura 1998), GSL's default: period 2^19937 - 1, and the
-// same sequence for a seed on every platform GSL runs on.
-static const gsl_rng_type *rng_type(void) { return gsl_rng_mt19937; }
-
-const char *sens_rng_name(void) { return rng_type()->name; }
-
-static double noisy(double nominal, double sd, double z) { return sd > 0.0 ? nominal + sd * z : nominal; }
+const char *sens_rng_name(void) { return "pool_noise_normal"; }
 
 int sens_draw_samples(const pool_scenario *layout, const pool_batch_strike *nominal,
                       const sens_noise *noise, long n, unsigned long seed, sens_samples *out) {
@@ -26,33 +19,24 @@ int sens_draw_samples(const pool_scenario *layout, const pool_batch_strike *nomi
 	out->position_count = m;
 	out->strikes = calloc((size_t)n, sizeof *out->strikes);
 	out->positions = m ? calloc((size_t)n * (size_t)m * 2, sizeof *out->positions) : NULL;
-	gsl_rng *rng = gsl_rng_alloc(rng_type());
-	if (!out->strikes || (m && !out->positions) || !rng) {
-		gsl_rng_free(rng);
+	if (!out->strikes || (m && !out->positions)) {
 		sens_samples_free(out);
 		return -1;
 	}
-	gsl_rng_set(rng, seed);
-	const double *sd = noise->cue_sd;
 	for (long i = 0; i < n; ++i) {
-		double z[SENS_CUE_COUNT];
-		for (int p = 0; p < SENS_CUE_COUNT; ++p) // every deviate is drawn, whatever the sd
-			z[p] = gsl_ran_gaussian(rng, 1.0);
-		pool_batch_strike *s = &out->strikes[i];
-		s->ball = nominal->ball;
-		s->speed = noisy(nominal->speed, sd[SENS_SPEED], z[SENS_SPEED]);
-		s->phi = noisy(nominal->phi, sd[SENS_PHI], z[SENS_PHI]);
-		s->theta = fabs(noisy(nominal->theta, sd[SENS_THETA], z[SENS_THETA]));
-		s->a = noisy(nominal->a, sd[SENS_A], z[SENS_A]);
-		s->b = noisy(nominal->b, sd[SENS_B], z[SENS_B]);
+		// Deviates 0 to 4: the cue parameters; then 5 + 2k and 6 + 2k: x and y of noisy ball k.
+		out->strikes[i] = pool_batch_noisy(nominal, &noise->cue, seed, (uint64_t)i);
 		for (int k = 0; k < m; ++k) {
 			const pool_ball_state *ball = &layout->balls[noise->position_index[k]];
-			double zx = gsl_ran_gaussian(rng, 1.0), zy = gsl_ran_gaussian(rng, 1.0);
-			out->positions[(i * m + k) * 2] = noisy(ball->pos.x, noise->position_sd, zx);
-			out->positions[(i * m + k) * 2 + 1] = noisy(ball->pos.y, noise->position_sd, zy);
+			double *xy = &out->positions[(i * m + k) * 2];
+			xy[0] = ball->pos.x;
+			xy[1] = ball->pos.y;
+			if (noise->position_sd > 0.0) {
+				xy[0] += noise->position_sd * pool_noise_normal(seed, (uint64_t)i, 5u + 2u * (uint32_t)k);
+				xy[1] += noise->position_sd * pool_noise_normal(seed, (uint64_t)i, 6u + 2u * (uint32_t)k);
+			}
 		}
 	}
-	gsl_rng_free(rng);
 	return 0;
 }
 

@@ -45,7 +45,7 @@ static void put_proportion(pool_text_buffer *b, const char *what, const sens_pro
 char *sens_report_text(const sens_study *s) {
 	pool_text_buffer b = {0};
 	const double *sd = s->noise.cue_sd;
-	put(&b, "%s: %ld samples of %s, seed %lu (GSL %s)\n", SENS_PROGRAM, s->samples.n, s->scenario_path,
+	put(&b, "%s: %ld samples of %s, seed %lu (%s)\n", SENS_PROGRAM, s->samples.n, s->scenario_path,
 	    s->seed, sens_rng_name());
 	put(&b, "  strike: ball %d, speed %.6g m/s, phi %.6g deg, theta %.6g deg, a %.6g m, b %.6g m\n",
 	    (int)s->nominal.ball, s->nominal.speed, s->nominal.phi, s->nominal.theta, s->nominal.a,
@@ -86,6 +86,19 @@ char *sens_report_text(const sens_study *s) {
 				put_proportion(&b, "off the table", &c->off_table);
 			}
 			put(&b, " (Wilson %.0f%%)\n", 100.0 * SENS_CONFIDENCE);
+		}
+		if (s->layout->has_game) {
+			const sens_game_stats g = sens_game_stats_compute(r);
+			put(&b, "  game %s: ", pool_game_rules_name(s->layout->game.rules));
+			put_proportion(&b, "legal", &g.legal);
+			put(&b, "; ");
+			put_proportion(&b, "legal pot", &g.legal_pot);
+			for (int o = 0; o < 4; ++o)
+				if (g.outcomes[o].count > 0) {
+					put(&b, "; ");
+					put_proportion(&b, pool_game_outcome_name((pool_game_outcome)o), &g.outcomes[o]);
+				}
+			put(&b, "\n");
 		}
 	}
 	if (s->set_count == 2)
@@ -172,6 +185,21 @@ char *sens_report_json(const sens_study *s) {
 		pool_jw_int(&w, r->refused);
 		pool_jw_key(&w, "failed");
 		pool_jw_int(&w, r->failed);
+		if (s->layout->has_game) {
+			const sens_game_stats g = sens_game_stats_compute(r);
+			pool_jw_key(&w, "game");
+			pool_jw_object(&w, false);
+			pool_jw_key(&w, "rules");
+			pool_jw_string(&w, pool_game_rules_name(s->layout->game.rules));
+			jw_proportion(&w, "legal", &g.legal);
+			jw_proportion(&w, "legal_pot", &g.legal_pot);
+			pool_jw_key(&w, "outcomes");
+			pool_jw_object(&w, false);
+			for (int o = 0; o < 4; ++o)
+				jw_proportion(&w, pool_game_outcome_name((pool_game_outcome)o), &g.outcomes[o]);
+			pool_jw_end(&w, '}');
+			pool_jw_end(&w, '}');
+		}
 		pool_jw_key(&w, "balls");
 		pool_jw_array(&w, false);
 		for (int k = 0; k < s->tracked_count; ++k) {
@@ -279,7 +307,15 @@ char *sens_report_csv(const sens_study *s) {
 	        "p_off_table_low,p_off_table_high");
 	for (int p = 0; p < SENS_POCKET_COUNT; ++p)
 		put(&b, ",p_%s,p_%s_low,p_%s_high", pocket_names[p], pocket_names[p], pocket_names[p]);
-	put(&b, ",mean_distance\n");
+	put(&b, ",mean_distance");
+	if (s->layout->has_game) {
+		put(&b, ",p_legal,p_legal_low,p_legal_high,p_legal_pot,p_legal_pot_low,p_legal_pot_high");
+		for (int o = 0; o < 4; ++o) {
+			const char *name = pool_game_outcome_name((pool_game_outcome)o);
+			put(&b, ",p_%s,p_%s_low,p_%s_high", name, name, name);
+		}
+	}
+	put(&b, "\n");
 	for (int set = 0; set < s->set_count; ++set)
 		for (int k = 0; k < s->tracked_count; ++k) {
 			const sens_cloud *c = cloud_of(s, set, k);
@@ -298,6 +334,13 @@ char *sens_report_csv(const sens_study *s) {
 			for (int p = 0; p < SENS_POCKET_COUNT; ++p)
 				csv_proportion(&b, &c->pockets[p]);
 			csv_num(&b, set > 0, sens_mean_distance(s, k)); // from the first set's mean
+			if (s->layout->has_game) {
+				const sens_game_stats g = sens_game_stats_compute(r);
+				csv_proportion(&b, &g.legal);
+				csv_proportion(&b, &g.legal_pot);
+				for (int o = 0; o < 4; ++o)
+					csv_proportion(&b, &g.outcomes[o]);
+			}
 			put(&b, "\n");
 		}
 	if (b.failed) {
@@ -320,6 +363,8 @@ char *sens_samples_csv(const sens_study *s) {
 		int id = (int)layout->balls[s->tracked[k]].id;
 		put(&b, ",ball_%d_x,ball_%d_y,ball_%d_state,ball_%d_pocket", id, id, id, id);
 	}
+	if (s->layout->has_game)
+		put(&b, ",legal,outcome");
 	put(&b, ",error\n");
 	int m = s->samples.position_count, t = s->tracked_count;
 	for (int set = 0; set < s->set_count; ++set) {
@@ -346,6 +391,11 @@ char *sens_samples_csv(const sens_study *s) {
 				int8_t p = r->pocket[i * t + k];
 				put(&b, ",%s,%s", ok ? pool_motion_name((pool_motion)r->state[i * t + k]) : "",
 				    p >= 0 && p < SENS_POCKET_COUNT ? pocket_names[p] : "");
+			}
+			if (s->layout->has_game) {
+				const int8_t legal = r->legal[i], outcome = r->outcome[i];
+				put(&b, ",%s,%s", legal < 0 ? "" : legal ? "true" : "false",
+				    outcome < 0 ? "" : pool_game_outcome_name((pool_game_outcome)outcome));
 			}
 			put(&b, ",");
 			if (r->error[i])

@@ -74,9 +74,19 @@ static void run_one(run_worker *w, long i) {
 			r->state[i * t + k] = -1;
 			r->pocket[i * t + k] = (int8_t)POOL_POCKET_NONE;
 		}
+		if (r->legal)
+			r->legal[i] = r->outcome[i] = -1;
 		return;
 	}
 	r->stop[i] = (int8_t)pool_sim_stop_reason(w->sim);
+	pool_game_result game;
+	if (r->legal) {
+		// The layout's game judges the shot (the parser checked its balls; a judge that refuses
+		// counts as not legal, with no outcome).
+		const bool judged = pool_batch_judge(&shot, w->sim, &game);
+		r->legal[i] = (int8_t)(judged && game.legal);
+		r->outcome[i] = judged ? (int8_t)game.outcome : -1;
+	}
 	for (int k = 0; k < t; ++k) {
 		const pool_ball_state *f = &w->final[c->tracked[k]];
 		r->pos[(i * t + k) * 2] = f->pos.x;
@@ -119,13 +129,19 @@ int sens_run_samples(const pool_scenario *layout, const pool_sim_def *def, const
 	out->pos = calloc(nt * 2 + 1, sizeof *out->pos);
 	out->state = calloc(nt + 1, sizeof *out->state);
 	out->pocket = calloc(nt + 1, sizeof *out->pocket);
+	bool game_ok = true;
+	if (layout->has_game) {
+		out->legal = calloc((size_t)n, sizeof *out->legal);
+		out->outcome = calloc((size_t)n, sizeof *out->outcome);
+		game_ok = out->legal && out->outcome;
+	}
 	if (threads > n)
 		threads = n;
 	if (threads < 1)
 		threads = 1;
 	run_worker *workers = calloc((size_t)threads, sizeof *workers);
 	pthread_t *ids = calloc((size_t)threads, sizeof *ids);
-	if (!out->stop || !out->error || !out->pos || !out->state || !out->pocket || !workers || !ids) {
+	if (!out->stop || !out->error || !out->pos || !out->state || !out->pocket || !game_ok || !workers || !ids) {
 		free(workers);
 		free(ids);
 		sens_run_free(out);
@@ -201,5 +217,7 @@ void sens_run_free(sens_run *r) {
 	free(r->pos);
 	free(r->state);
 	free(r->pocket);
+	free(r->legal);
+	free(r->outcome);
 	memset(r, 0, sizeof *r);
 }

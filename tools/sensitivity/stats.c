@@ -98,3 +98,24 @@ int sens_cloud_compute(const sens_run *r, int k, int32_t id, sens_cloud *out) {
 	free(y);
 	return 0;
 }
+
+sens_game_stats sens_game_stats_compute(const sens_run *r) {
+	sens_game_stats g;
+	memset(&g, 0, sizeof g);
+	long legal = 0, legal_pot = 0, outcomes[4] = {0, 0, 0, 0};
+	for (long i = 0; r->legal && i < r->n; ++i) {
+		if (r->stop[i] < 0)
+			continue;
+		g.samples++;
+		legal += r->legal[i] == 1;
+		if (r->outcome[i] >= 0 && r->outcome[i] < 4)
+			outcomes[r->outcome[i]]++;
+		legal_pot += r->legal[i] == 1 &&
+		             (r->outcome[i] == POOL_OUTCOME_CONTINUE || r->outcome[i] == POOL_OUTCOME_WIN);
+	}
+	g.legal = sens_wilson(legal, g.samples);
+	g.legal_pot = sens_wilson(legal_pot, g.samples);
+	for (int k = 0; k < 4; ++k)
+		g.outcomes[k] = sens_wilson(outcomes[k], g.samples);
+	return g;
+}

@@ -24,7 +24,8 @@ extern const char *const sens_cue_names[SENS_CUE_COUNT];
 
 /// What is noisy: standard deviations around the scenario's strike and ball positions.
 typedef struct sens_noise {
-	double cue_sd[SENS_CUE_COUNT]; ///< of speed (m/s), phi, theta (degrees), a, b (m)
+	double cue_sd[SENS_CUE_COUNT]; ///< of speed (m/s), phi, theta (degrees), a, b (m), as given
+	pool_noise cue;                ///< the same in pool_noise's units (radians), as drawn
 	double position_sd;            ///< m, of x and of y of every ball in position_index
 	int position_count;            ///< balls whose positions are noisy
 	int *position_index;           ///< their indices in the layout (owned)
@@ -38,13 +39,13 @@ typedef struct sens_samples {
 	double *positions;          ///< n * position_count * 2: x, y of each noisy ball (absolute)
 } sens_samples;
 
-/// The name of GSL's generator type used (gsl_rng_mt19937: "mt19937").
+/// The generator's name ("pool_noise_normal": libpool games' counter-based deviates).
 const char *sens_rng_name(void);
 
-/// Draws n samples with seed (1 .. 2^32 - 1). Sample i takes, in this order, 5 standard normal
-/// deviates for speed, phi, theta, a, b and then 2 per noisy ball (x, y), from one generator:
-/// value = nominal + sd * z (exactly nominal when sd is 0), theta folded to |theta| (a cue does
-/// not point below the horizontal). Returns 0, or -1 when out of memory.
+/// Draws n samples with seed (1 .. 2^32 - 1). Sample i takes pool_noise_normal(seed, i, k): k = 0
+/// to 4 for speed, phi, theta, a, b (its strike is pool_batch_noisy's: value = nominal + sd * z,
+/// exactly nominal when sd is 0, theta folded to |theta|), then k = 5 + 2j and 6 + 2j for x and
+/// y of noisy ball j. Returns 0, or -1 when out of memory.
 int sens_draw_samples(const pool_scenario *layout, const pool_batch_strike *nominal,
                       const sens_noise *noise, long n, unsigned long seed, sens_samples *out);
 void sens_samples_free(sens_samples *s);
@@ -75,6 +76,8 @@ typedef struct sens_run {
 	double *pos;     ///< n * tracked * 2: final x, y
 	int8_t *state;   ///< n * tracked: final pool_motion (-1 when refused)
 	int8_t *pocket;  ///< n * tracked: pool_pocket the ball fell into, -1 for none
+	int8_t *legal;   ///< n: with a game, 1 when the shot was legal, 0 when not, -1 refused (else NULL)
+	int8_t *outcome; ///< n: with a game, the pool_game_outcome, -1 refused (else NULL)
 	long refused;    ///< samples the library refused
 	long failed;     ///< samples the library failed to simulate (internal errors)
 } sens_run;
@@ -92,6 +95,17 @@ typedef struct sens_proportion {
 	long count, n;
 	double p, low, high;
 } sens_proportion;
+
+/// With a game: how the samples of one model set fared under the rules.
+typedef struct sens_game_stats {
+	long samples;               ///< samples simulated
+	sens_proportion legal;      ///< the shot was legal
+	sens_proportion legal_pot;  ///< legal, and the shooter keeps the table or wins (a legal pot, a point)
+	sens_proportion outcomes[4]; ///< continue, turn_over, win, loss
+} sens_game_stats;
+
+/// The game statistics of run r.
+sens_game_stats sens_game_stats_compute(const sens_run *r);
 
 /// The cloud of one tracked ball's final positions under one model set.
 typedef struct sens_cloud {

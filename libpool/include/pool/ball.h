@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include "pool/base.h"
+#include "pool/table.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -43,6 +44,11 @@ typedef struct pool_ball_state {
 	pool_vec3 vel;      ///< m/s
 	pool_vec3 omega;    ///< rad/s
 } pool_ball_state;
+
+/// A ball at rest on the cloth at (x, y): centre at z = params->ball_radius, no velocity, no
+/// spin, motion stationary; what pool_sim_add_ball needs in planar mode (a zero-initialised
+/// state has z = 0, under the cloth). params NULL means pool_default_params().
+POOL_API pool_ball_state pool_ball_on_cloth(int32_t id, double x, double y, const pool_params *params);
 
 #ifdef __cplusplus
 }

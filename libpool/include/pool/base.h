@@ -16,7 +16,7 @@ extern "C" {
 #define POOL_API
 #endif
 
-/// Library version, major * 10000 + minor * 100 + patch.
+/// Library version, major * 10000 + minor * 100 + patch, of the headers compiled against.
 #define POOL_VERSION 100
 
 /// A 3D vector in the table frame (x along the length, y along the width, z up), SI units.
@@ -41,6 +41,10 @@ typedef enum pool_result {
 	POOL_ERR_STATE = -10,           ///< call not allowed in the simulation's current state
 	POOL_ERR_INTERNAL = -11,        ///< an invariant broke inside the library (a bug: please report)
 } pool_result;
+
+/// The version of the library linked at run time, as POOL_VERSION (major * 10000 + minor * 100 +
+/// patch): a program built against one libpool and run against another can tell.
+POOL_API int pool_version(void);
 
 /// Static English description of a result code.
 POOL_API const char *pool_result_str(pool_result result);

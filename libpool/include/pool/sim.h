@@ -78,6 +78,10 @@ typedef enum pool_stop_reason {
 	POOL_STOP_MAX_EVENTS = 3, ///< max_events were processed
 } pool_stop_reason;
 
+/// Lower-case name as written in result files' "stats.stop_reason": "none", "rest", "max_time",
+/// "max_events"; "unknown" for a value out of range.
+POOL_API const char *pool_stop_reason_name(pool_stop_reason reason);
+
 /// Creates an empty simulation; validates the def (message names the field).
 POOL_API pool_result pool_sim_create(const pool_sim_def *def, pool_sim **sim, pool_error *error);
 
@@ -130,6 +134,15 @@ POOL_API const pool_ball_state *pool_sim_balls(const pool_sim *sim);
 /// out must hold pool_sim_ball_count() states. t must not exceed the time up to which events
 /// have been processed (any t once the shot is at rest); otherwise POOL_ERR_STATE.
 POOL_API pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out);
+
+/// Exact states of every ball at each of `count` times (s), as pool_sim_state_at gives them, in
+/// one call: out[k * pool_sim_ball_count() + i] is ball i (insertion index) at times[k]. out must
+/// hold count * pool_sim_ball_count() states. Times need no order; each must be >= 0 and at most
+/// the processed time (any once the shot is at rest). On an error (POOL_ERR_INVALID_ARGUMENT for
+/// a NaN or negative time, POOL_ERR_STATE for one beyond the processed time) nothing is written
+/// and *bad_index, when not NULL, receives the index of the first offending time.
+POOL_API pool_result pool_sim_states_at(const pool_sim *sim, const double *times, int count, pool_ball_state *out,
+                                        int *bad_index);
 
 /// Processed events in time order; *count receives their number. Valid until the sim changes.
 POOL_API const pool_event *pool_sim_events(const pool_sim *sim, int *count);
