@@ -26,6 +26,10 @@ void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now);
 /// at max_time found none although one must come (a flight's landing).
 static inline double pool_schedule_beyond(const pool_sim *sim) { return nextafter(sim->def.max_time, INFINITY); }
 
+/// Sets the pair search (broadphase.h) from the next run on: every body is predicted again then.
+/// For tests and benchmarks; the default, POOL_BROADPHASE_AUTO, chooses by ball count.
+void pool_schedule_set_broadphase(pool_sim *sim, pool_broadphase_mode mode);
+
 /// Slot of the earliest pending event (sim->n > 0).
 static inline int pool_schedule_next(const pool_sim *sim) { return pool_event_queue_top(&sim->queue); }
 

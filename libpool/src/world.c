@@ -202,6 +202,7 @@ void pool_sim_destroy(pool_sim *sim) {
 	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work};
 	pool_link_free(&sim->link);
 	pool_history_free(&sim->history, &a);
+	pool_broadphase_free(&sim->broad, &a);
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
 		pool_mem_free(&a, arrays[i]);
 	pool_mem_free(&a, sim);

@@ -4,6 +4,7 @@
 //                kind's handler and recorded, and its bodies start new segments;
 //   history.c    the events, their states and each ball's chain of states (pool_sim_state_at);
 //   schedule.c   the event heap over bodies and the predictions that fill it;
+//   broadphase.c which bodies a prediction looks at (a grid of the paths' reach, many balls);
 //   segment.c    the closed-form motion of each state (one polynomial per segment);
 //   handlers.c   one small function per event kind, each in the file of its physics
 //                (motion.c, ball_ball.c, cushion.c, cloth.c);
@@ -13,6 +14,7 @@
 #ifndef POOL_WORLD_H
 #define POOL_WORLD_H
 
+#include "broadphase.h"
 #include "event_queue.h"
 #include "history.h"
 #include "link.h"
@@ -45,6 +47,7 @@ struct pool_sim {
 	pool_event_key *keys;
 	int *heap, *hpos, *work;
 	pool_event_queue queue;
+	pool_broadphase broad;  // which bodies each contact search looks at (broadphase.h)
 
 	pool_link link;         // LINK's own state (link.h)
 	pool_history history;   // the shot so far (history.h)

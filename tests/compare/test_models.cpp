@@ -195,12 +195,7 @@ int main(int argc, char **argv) {
 	}
 	bad_models_are_refused();
 	closed_form_steps_aside_for_squirt();
-	for (int i = 2; i < argc; ++i) {
-		Plugin plugin;
-		std::string error;
-		CHECK(load_plugin(argv[i], argv[1], &plugin, &error), "expected engine missing: %s", error.c_str());
-		if (!plugin.api)
-			continue;
+	for (const Plugin &plugin : load_plugins(argc, argv, 2, argv[1])) {
 		engine_says_what_it_lacks(plugin);
 		if (std::string(plugin.api->name) == "libpool") {
 			libpool_runs_the_models(plugin);

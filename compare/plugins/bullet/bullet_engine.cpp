@@ -615,23 +615,16 @@ void Engine::update_contacts(double t_detect) {
 
 void Engine::measure_penetration() {
 	const double R = params_.ball_radius;
-	const size_t n = balls_.size();
-	for (size_t i = 0; i < n; ++i) {
-		if (!balls_[i]->active)
+	centres_.clear();
+	for (const auto &b : balls_) {
+		if (!b->active)
 			continue;
-		const btVector3 pi = balls_[i]->body->getCenterOfMassPosition();
-		for (size_t j = i + 1; j < n; ++j) {
-			if (!balls_[j]->active)
-				continue;
-			const btVector3 d = pi - balls_[j]->body->getCenterOfMassPosition();
-			const double d2 = d.length2();
-			if (d2 < 4.0 * R * R)
-				max_penetration_ = std::max(max_penetration_, 2.0 * R - std::sqrt(d2));
-		}
-		const double p[3] = {pi.x(), pi.y(), pi.z()};
+		const btVector3 p = b->body->getCenterOfMassPosition();
+		centres_.push_back({p.x(), p.y(), p.z()});
 		for (const RailSegment &s : table_.segments)
-			max_penetration_ = std::max(max_penetration_, R + s.radius - pool_plugin::distance_to_axis(s, p));
+			max_penetration_ = std::max(max_penetration_, R + s.radius - pool_plugin::distance_to_axis(s, centres_.back().data()));
 	}
+	max_penetration_ = std::max(max_penetration_, overlap_.deepest(centres_, R));
 }
 
 void Engine::classify(Ball &ball, bool report_events, double t) {
