@@ -415,7 +415,7 @@ class PoolGame(unittest.TestCase):
         self.assertIn("--layout: game.rules: 8ball, not 9ball", p.stderr)
         p = self.play("9ball", [{"strike": {"speed": 8.0}}], "--table", "wpa-7ft")
         self.assertEqual(json.loads(p.stdout)["table"]["length"], 78 * 0.0254)
-        p = self.play("9ball", [], "--table", "snooker", expect=2)
+        p = self.play("9ball", [], "--table", "wpa-10ft", expect=2)
         self.assertIn("--table: unknown preset", p.stderr)
 
     def test_strikes_ending_keep_the_record(self):

@@ -191,7 +191,7 @@ static void test_hostile_same_events(void **state) {
 	pool_sim *all = make_sim(&def), *grid = make_sim(&def);
 	static hs_shot h;
 	static shot s;
-	long events = 0;
+	long events = 0, refused = 0;
 	for (long k = 0; k < HOSTILE_SHOTS; ++k) {
 		hs_make(&h, 23, k, (int)(k % HS_CLASS_COUNT));
 		s.def = h.def;
@@ -199,6 +199,12 @@ static void test_hostile_same_events(void **state) {
 		memcpy(s.balls, h.balls, sizeof(pool_ball_state) * (size_t)h.n);
 		s.struck = h.cue;
 		s.strike = h.strike;
+		// Tables the library refuses at validation (the nose class's noses outside (R, 1.9 R],
+		// docs/physics.md) run on neither search.
+		if (pool_sim_reset(all, &s.def, NULL) != POOL_OK) {
+			refused++;
+			continue;
+		}
 		const pool_result ra = run(all, &s, POOL_BROADPHASE_ALL_PAIRS), rg = run(grid, &s, POOL_BROADPHASE_GRID);
 		assert_int_equal(ra, rg);
 		assert_same(all, grid, hs_class_names[h.cls], k);
@@ -206,7 +212,7 @@ static void test_hostile_same_events(void **state) {
 		pool_sim_events(all, &n);
 		events += n;
 	}
-	printf("hostile shots: %d, events %ld, the same with both searches\n", HOSTILE_SHOTS, events);
+	printf("hostile shots: %d (%ld refused at validation), events %ld, the same with both searches\n", HOSTILE_SHOTS, refused, events);
 	pool_sim_destroy(all);
 	pool_sim_destroy(grid);
 }
