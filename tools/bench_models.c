@@ -1,8 +1,8 @@
-// pool-bench-models: what issue 12's optional models cost. (1) One ball-cushion impact by each
-// law (Petit's pool_collide, Mathavan 2010's pool_cushion_mathavan at POOL_MATHAVAN_STEPS), on
-// a fixed set of random rolling/spinning impacts, timed in batches: median and minimum per
-// impact. (2) Whole breaks (frozen rack and 0.1 mm gap, 8 m/s) with the default models and with
-// each optional model on: median and minimum per shot, and the ratio to the default.
+// pool-bench-models: what the models cost. (1) One ball-cushion impact by each law (Petit's
+// pool_collide, Mathavan 2010's pool_cushion_mathavan), on a fixed set of random rolling/spinning
+// impacts, timed in batches: median and minimum per impact. (2) Whole breaks (frozen rack and
+// 0.1 mm gap, 8 m/s) under "thesis", with each measured law added, and with the defaults: median
+// and minimum per shot, and the ratio to thesis.
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -84,7 +84,7 @@ static double time_break(const char *name, const pool_sim_def *def, double gap, 
 	printf("break gap %-6.4g %-26s median %8.1f us  min %8.1f us  events %4d (cushion %3d)", gap * 1e3, name,
 	       1e6 * s.median, 1e6 * s.min, events, cushions);
 	if (baseline > 0.0)
-		printf("  x%.2f of default", s.median / baseline);
+		printf("  x%.2f of thesis", s.median / baseline);
 	printf("\n");
 	free(t);
 	pool_sim_destroy(sim);
@@ -98,8 +98,9 @@ int main(int argc, char **argv) {
 			printf("usage: pool-bench-models [--runs N]\n"
 			       "Times one ball-cushion impact by Petit's law and by mathavan2010 (median and\n"
 			       "minimum per impact over %d batches of %d random impacts), then the 8 m/s break\n"
-			       "(frozen and 0.1 mm gap) with the default models and each optional model, N runs\n"
-			       "each (default 1000): median and minimum per shot, and the ratio to the default.\n",
+			       "(frozen and 0.1 mm gap) under thesis, with each measured law, with the default\n"
+			       "models, N runs each (default 1000): median and minimum per shot, and the ratio\n"
+			       "to thesis.\n",
 			       BATCHES, IMPACTS);
 			return 0;
 		}
@@ -136,15 +137,18 @@ int main(int argc, char **argv) {
 	time_law(name, 1, p, in, n);
 	for (int g = 0; g < 2; ++g) {
 		const double gap = g ? 1e-4 : 0.0;
-		const double base = time_break("default models", &def, gap, runs, 0.0);
 		pool_sim_def d = def;
+		d.models = pool_thesis_models();
+		const double base = time_break("thesis", &d, gap, runs, 0.0);
 		d.models.cushion = POOL_CUSHION_MATHAVAN2010;
-		time_break("cushion mathavan2010", &d, gap, runs, base);
-		d = def;
+		time_break("thesis + mathavan2010", &d, gap, runs, base);
+		d.models = pool_thesis_models();
 		d.models.ball_ball_friction = POOL_BALL_FRICTION_ALCIATORE;
-		time_break("ball friction alciatore", &d, gap, runs, base);
-		d.models = (pool_models){POOL_CUSHION_MATHAVAN2010, POOL_BALL_FRICTION_ALCIATORE, POOL_SQUIRT_ENDMASS};
-		time_break("all three models", &d, gap, runs, base);
+		time_break("thesis + alciatore", &d, gap, runs, base);
+		time_break("default models", &def, gap, runs, base);
+		d = def;
+		d.models.squirt = POOL_SQUIRT_ENDMASS;
+		time_break("default + endmass", &d, gap, runs, base);
 	}
 	return 0;
 }

@@ -48,11 +48,41 @@ static int run(pool_sim *sim, const shot *s, int *events) {
 	return 0;
 }
 
+// --only: the scenes whose name starts with it (NULL: every scene).
+static const char *only;
+// --hash: print a hash of every event and state of each scene's shots (to compare versions).
+static int hash_events;
+
+static uint64_t fnv(uint64_t h, const void *p, size_t n) {
+	const unsigned char *c = p;
+	for (size_t i = 0; i < n; ++i)
+		h = (h ^ c[i]) * 0x100000001B3ull;
+	return h;
+}
+
+// Every event (its fields and the states after it) and the final states of the shot just run.
+static uint64_t hash_shot(uint64_t h, const pool_sim *sim) {
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	for (int k = 0; k < count; ++k) {
+		h = fnv(h, &events[k].time, sizeof events[k].time);
+		const int fields[4] = {(int)events[k].type, (int)events[k].rail, (int)events[k].pocket, events[k].ball_count};
+		h = fnv(h, fields, sizeof fields);
+		h = fnv(h, pool_sim_event_states(sim, &events[k]), sizeof(pool_ball_state) * (size_t)events[k].ball_count);
+	}
+	return fnv(h, pool_sim_balls(sim), sizeof(pool_ball_state) * (size_t)pool_sim_ball_count(sim));
+}
+
 // Times `runs` runs over the shot list (cycled); prints median / min per shot and events/s.
-// t holds `runs` doubles (allocated before the memory baseline).
-static int measure(pool_sim *sim, const char *name, const shot *shots, int count, int runs, double *t) {
+// t holds `runs` doubles (allocated before the memory baseline). Not inlined: callgrind's
+// --toggle-collect=measure counts the instructions of the timed runs alone.
+__attribute__((noinline)) static int measure(pool_sim *sim, const char *name, const shot *shots, int count, int runs,
+                                             double *t) {
+	if (only && strncmp(name, only, strlen(only)) != 0)
+		return 0;
 	long events = 0, link_steps = 0;
 	double total = 0.0;
+	uint64_t hash = 0xCBF29CE484222325ull;
 	for (int r = 0; r < runs; ++r) {
 		int ev = 0;
 		double t0 = pool_bench_now_s();
@@ -61,6 +91,8 @@ static int measure(pool_sim *sim, const char *name, const shot *shots, int count
 			return -1;
 		}
 		t[r] = pool_bench_now_s() - t0;
+		if (hash_events && r < count) // each shot of the list once, outside the timing
+			hash = hash_shot(hash, sim);
 		total += t[r];
 		events += ev;
 		pool_link_stats ls;
@@ -72,6 +104,8 @@ static int measure(pool_sim *sim, const char *name, const shot *shots, int count
 	       "events/s %.3g\n",
 	       name, runs, 1e6 * sum.median, 1e6 * sum.min, 1e6 * total / runs, (double)events / runs,
 	       (double)link_steps / runs, (double)events / total);
+	if (hash_events)
+		printf("%-34s events hash %016llx (%d shots)\n", name, (unsigned long long)hash, runs < count ? runs : count);
 	fflush(stdout);
 	return 0;
 }
@@ -115,10 +149,12 @@ static double urand(void) {
 }
 
 int main(int argc, char **argv) {
-	int runs = 2000;
+	int runs = 2000, pockets = POOL_POCKETS_JAWS;
+	const char *models = "default";
 	for (int i = 1; i < argc; ++i) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-			printf("usage: pool-bench-shot [--runs N]\n"
+			printf("usage: pool-bench-shot [--runs N] [--models default|thesis] [--pockets jaws|mouth_lines]\n"
+			       "                       [--only NAME] [--hash]\n"
 			       "Times whole shots with libpool, reusing one pool_sim (pool_sim_reset):\n"
 			       "  break-frozen      15-ball rack, gap 0, centre-ball break at 8 m/s\n"
 			       "  break-gap-0.1mm   same with 0.1 mm between neighbours\n"
@@ -130,22 +166,51 @@ int main(int argc, char **argv) {
 			       "  break (airborne)  the 0.1 mm break with the cue elevated 5 deg, airborne motion\n"
 			       "Prints median, minimum and mean time per shot over N runs (default 2000), events\n"
 			       "and LINK steps per shot, events per second, the library's peak heap bytes and allocation count before and after the\n"
-			       "runs (they must not grow), the process's peak resident memory, and the machine.\n");
+			       "runs (they must not grow), the process's peak resident memory, and the machine.\n"
+			       "--models: the model set of every shot (default: the library's defaults, the\n"
+			       "measured laws; thesis: the 2012 work's).\n"
+			       "--pockets: the table's pocket model (default jaws; mouth_lines: the thesis model).\n"
+			       "--only NAME times only the scenes whose printed name starts with NAME (break-frozen,\n"
+			       "post-break, ...): for profiling, e.g. valgrind --tool=callgrind --toggle-collect=measure\n"
+			       "pool-bench-shot --runs 100 --only break-frozen (instructions of the timed runs / 100).\n"
+			       "--hash prints a hash of every event and state of each scene's shots (outside the timing):\n"
+			       "two versions that print the same hashes gave the same events bit for bit.\n");
 			return 0;
 		}
-		if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
+		if (strcmp(argv[i], "--pockets") == 0 && i + 1 < argc) {
+			pockets = pool_pockets_model_from_name(argv[++i]);
+			if (pockets < 0) {
+				fprintf(stderr, "pool-bench-shot: --pockets: jaws, mouth_lines or none\n");
+				return 2;
+			}
+		} else if (strcmp(argv[i], "--runs") == 0 && i + 1 < argc) {
 			runs = atoi(argv[++i]);
 			if (runs <= 0) {
 				fprintf(stderr, "pool-bench-shot: --runs: must be > 0\n");
 				return 2;
 			}
+		} else if (strcmp(argv[i], "--models") == 0 && i + 1 < argc) {
+			models = argv[++i];
+			pool_models m;
+			if (pool_models_preset(models, &m) != POOL_OK) {
+				fprintf(stderr, "pool-bench-shot: --models: unknown model set '%s' (default, thesis)\n", models);
+				return 2;
+			}
+		} else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+			only = argv[++i];
+		} else if (strcmp(argv[i], "--hash") == 0) {
+			hash_events = 1;
 		} else {
 			fprintf(stderr, "pool-bench-shot: unknown argument '%s' (see --help)\n", argv[i]);
 			return 2;
 		}
 	}
 	print_machine();
+	printf("models: %s\n", models);
 	pool_sim_def def = pool_default_sim_def();
+	pool_models_preset(models, &def.models);
+	def.table.pockets = (pool_pockets_model)pockets;
+	printf("pockets: %s\n", pool_pockets_model_name(def.table.pockets));
 	def.allocator = (pool_allocator){counting_alloc, counting_free, NULL};
 	pool_sim *sim;
 	pool_error err;

@@ -26,6 +26,7 @@
 #include "cli.h"
 #include "game_json.h"
 #include "json_writer.h"
+#include "models_json.h"
 #include "read_input.h"
 #include "scenario.h"
 #include "text_buffer.h"
@@ -74,6 +75,7 @@ typedef struct batch_options {
 	int32_t ball;
 	long threads; ///< 0 = online CPUs
 	batch_format format;
+	const char *models; ///< --models: applied to the layout's models (NULL: the layout's)
 	size_t max_input;
 	bool no_progress;
 	bool help;
@@ -81,7 +83,7 @@ typedef struct batch_options {
 
 static const char usage_text[] =
 	"usage: pool-batch LAYOUT.json (--strikes FILE | --grid SPEC | --random N --ranges SPEC)\n"
-	"                  [--noise NAME|SPEC] [--seed S] [--ball ID] [--threads N]\n"
+	"                  [--noise NAME|SPEC] [--seed S] [--ball ID] [--threads N] [--models SET]\n"
 	"                  [--format csv|jsonl] [-o FILE] [--max-input BYTES] [--no-progress]\n"
 	"\n"
 	"Simulates many strikes on one layout (a libpool-scenario/1 file; its strike, if any, is the\n"
@@ -107,6 +109,9 @@ static const char usage_text[] =
 	"  --threads N        worker threads (default: the number of online CPUs)\n"
 	"  --format F         csv (default; one column group per ball id) or jsonl (a JSON object\n"
 	"                     per line)\n"
+	"  --models SET       the laws of every shot instead of the layout's \"models\": a model set,\n"
+	"                     default (the measured laws) or thesis (the 2012 work's), or model names\n"
+	"                     joined with '+' (thesis+endmass), applied to the layout's models\n"
 	"  -o, --output FILE  write to FILE instead of standard output (atomically)\n"
 	"  --max-input BYTES  refuse a layout or strike file longer than BYTES (default 64M)\n"
 	"  --no-progress      no progress line (it is shown on a terminal for runs over 1 s)\n"
@@ -1042,6 +1047,12 @@ static int batch_option(void *context, const char *a, const char *v) {
 			return pool_cli_usage_error(PROGRAM, "--format: '%s' is not csv or jsonl", pool_cli_arg(v));
 	} else if (strcmp(a, "--max-input") == 0) {
 		return pool_cli_max_input(PROGRAM, v, &o->max_input);
+	} else if (strcmp(a, "--models") == 0) {
+		pool_models check = pool_default_models();
+		char err[512];
+		if (pool_models_parse_spec(&check, v, err, sizeof err))
+			return pool_cli_usage_error(PROGRAM, "--models: %s", err);
+		o->models = v;
 	}
 	return 0;
 }
@@ -1053,7 +1064,7 @@ static int parse_options(int argc, char **argv, batch_options *o) {
 	static const char *const flags[] = {"--no-progress", NULL};
 	static const char *const with_value[] = {"-o",     "--output", "--strikes", "--grid",   "--random",    "--ranges",
 	                                         "--seed", "--ball",   "--threads", "--format", "--max-input", "--noise",
-	                                         NULL};
+	                                         "--models", NULL};
 	batch_parse bp = {o, false};
 	const int status =
 	    pool_cli_walk(PROGRAM, argc, argv, "layout", flags, with_value, batch_option, &bp, &o->layout_path, &o->help);
@@ -1108,6 +1119,9 @@ int main(int argc, char **argv) {
 		free(b);
 		return status;
 	}
+
+	if (o.models) // checked with the options: it applies
+		pool_models_parse_spec(&layout.def.models, o.models, err, sizeof err);
 
 	strike_base base = {0};
 	if (layout.has_strike) {

@@ -561,7 +561,7 @@ static int play_shot(game *g, game_peer *peer, bool *over) {
 	}
 	if ((r = pool_sim_run(g->sim)) != POOL_OK) {
 		fprintf(stderr, "%s: shot %ld: simulation failed at t = %.17g s: %s\n", PROGRAM, shot,
-		        pool_sim_time(g->sim), pool_result_str(r));
+		        pool_sim_time(g->sim), pool_sim_last_error(g->sim)[0] ? pool_sim_last_error(g->sim) : pool_result_str(r));
 		return POOL_EXIT_INTERNAL;
 	}
 	const pool_game_shot gs = pool_game_shot_of_sim(g->sim);

@@ -29,26 +29,35 @@ typedef struct rack_options {
 	const char *table;  ///< preset name
 	const char *output; ///< NULL = standard output
 	bool airborne;
-	pool_models models; ///< --model choices (zero: the default models)
+	pool_models models; ///< --models and --model choices, on the default models
+	bool has_models;    ///< written into the scenario only when chosen
 	bool help;
 } rack_options;
 
 static const char usage_text[] =
-	"usage: pool-rack 8ball|9ball [--speed V] [--gap G] [--spin A,B] [--phi DEG] [--theta DEG]\n"
-	"                 [--table PRESET] [--airborne] [--model KIND=NAME ...] [-o FILE]\n"
+	"usage: pool-rack 8ball|9ball|snooker|carom [--speed V] [--gap G] [--spin A,B] [--phi DEG]\n"
+	"                 [--theta DEG] [--table PRESET] [--airborne] [--models SET] [--model KIND=NAME ...]\n"
+	"                 [-o FILE]\n"
 	"\n"
 	"Writes a libpool-scenario/1 file: the cue ball (id 0) on the head spot, a standard rack\n"
 	"(8ball: ids 1..15, 9ball: ids 1..9) with its apex on the foot spot, and a break strike.\n"
+	"snooker (the default rack of --table snooker): 15 reds (ids 1..15) behind the pink, the\n"
+	"colours on their spots (ids 20 + value: yellow 22 ... black 27), the cue ball in the D.\n"
+	"carom (the default of --table carom): red (id 2) on the foot spot, yellow (id 1) on the head\n"
+	"spot, the cue ball 0.1524 m beside it. The break aims at the first object ball.\n"
 	"\n"
 	"  --speed V       cue speed in m/s (default 6)\n"
 	"  --gap G         gap between neighbouring rack balls in m (default 0.0001; 0 = frozen)\n"
 	"  --spin A,B      cue tip offsets in m: A right of centre, B above (default 0,0)\n"
 	"  --phi DEG       aim direction in degrees from +x (default: straight at the apex)\n"
 	"  --theta DEG     cue elevation in degrees (default 0)\n"
-	"  --table PRESET  wpa-9ft (default), wpa-8ft or wpa-7ft\n"
+	"  --table PRESET  wpa-9ft (default), wpa-8ft, wpa-7ft, snooker or carom (with its balls)\n"
 	"  --airborne      enable airborne motion in the scenario's options\n"
-	"  --model KIND=NAME  a model of the scenario's \"models\" (repeatable): cushion=petit|\n"
-	"                  mathavan2010, ball_ball_friction=constant|alciatore, squirt=none|endmass\n"
+	"  --models SET    the scenario's \"models\": a model set, default (the measured laws) or\n"
+	"                  thesis (the 2012 work's), or model names joined with '+' (thesis+endmass)\n"
+	"  --model KIND=NAME  one kind of the scenario's \"models\" (repeatable, after --models):\n"
+	"                  cushion=petit|mathavan2010, ball_ball_friction=constant|alciatore,\n"
+	"                  squirt=none|endmass\n"
 	"  -o FILE         write to FILE (atomically) instead of standard output\n"
 	"  -h, --help      show this help\n";
 
@@ -79,24 +88,29 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 	o->speed = DEFAULT_SPEED;
 	o->gap = DEFAULT_GAP;
 	o->table = "wpa-9ft";
-	bool have_kind = false;
+	o->models = pool_default_models();
+	bool have_kind = false, table_given = false;
 	for (int i = 1; i < argc; ++i) {
 		const char *a = argv[i];
 		const char *value = i + 1 < argc ? argv[i + 1] : NULL;
 		if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
 			o->help = true;
-		} else if (strcmp(a, "8ball") == 0 || strcmp(a, "9ball") == 0) {
+		} else if (strcmp(a, "8ball") == 0 || strcmp(a, "9ball") == 0 || strcmp(a, "snooker") == 0 ||
+		           strcmp(a, "carom") == 0) {
 			if (have_kind)
 				return pool_cli_usage_error(PROGRAM, "unexpected argument '%s' (one rack)",
 				                            pool_cli_arg(a));
-			o->kind = a[0] == '8' ? POOL_RACK_8BALL : POOL_RACK_9BALL;
+			o->kind = a[0] == '8' ? POOL_RACK_8BALL : a[0] == '9' ? POOL_RACK_9BALL
+			        : a[0] == 's' ? POOL_RACK_SNOOKER : POOL_RACK_CAROM;
 			have_kind = true;
+			if (!table_given) // each game on its own table unless --table says otherwise
+				o->table = a[0] == 's' ? "snooker" : a[0] == 'c' ? "carom" : "wpa-9ft";
 		} else if (strcmp(a, "--airborne") == 0) {
 			o->airborne = true;
 		} else if (a[0] == '-' && a[1] != '\0' && !value) {
 			if (strcmp(a, "--speed") && strcmp(a, "--gap") && strcmp(a, "--spin") &&
 			    strcmp(a, "--phi") && strcmp(a, "--theta") && strcmp(a, "--table") && strcmp(a, "-o") &&
-			    strcmp(a, "--model"))
+			    strcmp(a, "--model") && strcmp(a, "--models"))
 				return pool_cli_usage_error(PROGRAM, "unknown option '%s'", pool_cli_arg(a));
 			return pool_cli_usage_error(PROGRAM, "option %s needs a value", a);
 		} else if (strcmp(a, "--speed") == 0) {
@@ -135,14 +149,22 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 		} else if (strcmp(a, "--table") == 0) {
 			pool_table_def t;
 			if (pool_table_preset(value, &t) != POOL_OK)
-				return pool_cli_usage_error(PROGRAM, "--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft)",
-				                            pool_cli_arg(value));
+				return pool_cli_usage_error(PROGRAM, "--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft, "
+				                            "snooker, carom)", pool_cli_arg(value));
 			o->table = value;
+			table_given = true;
 			++i;
 		} else if (strcmp(a, "--model") == 0) {
 			int status = parse_model(value, &o->models);
 			if (status)
 				return status;
+			o->has_models = true;
+			++i;
+		} else if (strcmp(a, "--models") == 0) {
+			char err[512];
+			if (pool_models_parse_spec(&o->models, value, err, sizeof err))
+				return pool_cli_usage_error(PROGRAM, "--models: %s", err);
+			o->has_models = true;
 			++i;
 		} else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
 			o->output = value;
@@ -152,14 +174,19 @@ static int parse_options(int argc, char **argv, rack_options *o) {
 			                            "or an option)", pool_cli_arg(a));
 		}
 	}
+	// --table snooker or carom alone racks that game.
+	if (!have_kind && table_given && (strcmp(o->table, "snooker") == 0 || strcmp(o->table, "carom") == 0)) {
+		o->kind = o->table[0] == 's' ? POOL_RACK_SNOOKER : POOL_RACK_CAROM;
+		have_kind = true;
+	}
 	if (!o->help && !have_kind)
-		return pool_cli_usage_error(PROGRAM, "%s", "missing the rack: 8ball or 9ball");
+		return pool_cli_usage_error(PROGRAM, "%s", "missing the rack: 8ball, 9ball, snooker or carom");
 	return 0;
 }
 
 static char *scenario_json(const rack_options *o, const pool_ball_state *balls, int count,
                            double radius) {
-	pool_strike strike = pool_break_strike(o->speed);
+	pool_strike strike = pool_rack_break_strike(balls, count, o->speed);
 	double phi = o->has_phi ? o->phi : strike.phi * 180.0 / POOL_PI;
 	pool_jw w;
 	pool_jw_init(&w, true);
@@ -167,7 +194,8 @@ static char *scenario_json(const rack_options *o, const pool_ball_state *balls, 
 	pool_jw_key(&w, "format");
 	pool_jw_string(&w, "libpool-scenario/1");
 	pool_jw_key(&w, "name");
-	pool_jw_string(&w, o->kind == POOL_RACK_8BALL ? "8-ball break" : "9-ball break");
+	static const char *const names[] = {"8-ball break", "9-ball break", "snooker break", "carom break"};
+	pool_jw_string(&w, names[o->kind]);
 	pool_jw_key(&w, "table");
 	pool_jw_object(&w, true);
 	pool_jw_key(&w, "preset");
@@ -204,7 +232,7 @@ static char *scenario_json(const rack_options *o, const pool_ball_state *balls, 
 	pool_jw_key(&w, "b");
 	pool_jw_number(&w, o->b);
 	pool_jw_end(&w, '}');
-	if (!pool_models_are_default(&o->models))
+	if (o->has_models)
 		pool_jw_models(&w, &o->models);
 	if (o->airborne) {
 		pool_jw_key(&w, "options");
@@ -228,7 +256,8 @@ int main(int argc, char **argv) {
 	}
 	pool_table_def table;
 	pool_table_preset(o.table, &table);
-	pool_params params = pool_default_params();
+	pool_params params;
+	pool_params_preset(o.table, &params); // the table's own balls
 	pool_ball_state balls[32];
 	int count = pool_rack(o.kind, &table, &params, o.gap, balls, 32);
 	if (count < 0) {

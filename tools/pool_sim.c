@@ -246,7 +246,7 @@ int main(int argc, char **argv) {
 	double cpu = (double)(clock() - start) / CLOCKS_PER_SEC;
 	if (r != POOL_OK) {
 		fprintf(stderr, "pool-sim: simulation failed at t = %.17g s: %s\n", pool_sim_time(sim),
-		        pool_result_str(r));
+		        pool_sim_last_error(sim)[0] ? pool_sim_last_error(sim) : pool_result_str(r));
 		pool_sim_destroy(sim);
 		pool_scenario_free(&scenario);
 		return POOL_EXIT_INTERNAL;

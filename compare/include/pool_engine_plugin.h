@@ -104,8 +104,8 @@ typedef const pool_engine_api *(*pool_engine_entry_fn)(void);
 /// Optional second export, looked up by name (added without changing the ABI version: a plugin
 /// without it says nothing about models, and its records have "unsupported_models": null):
 ///     int pool_engine_unsupported_models(const char *scenario_json, char *out, size_t out_size);
-/// Writes into out the models the scenario selects (its "models" object, docs/physics.md "Optional
-/// models") that the engine cannot express, as "kind=name" separated by commas
+/// Writes into out the models the scenario selects (its "models" object, docs/physics.md
+/// "Models") that the engine cannot express, as "kind=name" separated by commas
 /// ("cushion=mathavan2010,squirt=endmass"; "" when it expresses them all) and returns how many,
 /// or -1 with the parser's message in out for a scenario it cannot read. The engine still runs
 /// such a scenario with the laws it has; the harness records the list next to the errors.

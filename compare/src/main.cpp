@@ -22,6 +22,9 @@
 #include "reference.h"
 #include "results_io.h"
 #include "runner.h"
+#include "text_table.h"
+#include "scale_report.h"
+#include "scale_scenarios.h"
 #include "scenario_file.h"
 
 using namespace pool_compare;
@@ -31,7 +34,8 @@ namespace {
 const char kUsage[] =
     "usage: pool-compare [--scenario FILE ...] [--engines libpool,ode,bullet] [--dt 1e-3,1e-4]\n"
     "                    [--out DIR] [--lcm-url URL] [--plugin-dir DIR] [--spread N]\n"
-    "                    [--airborne] [--link] [--repeat N] [--timeout S] [--in-process]\n"
+    "                    [--airborne] [--link] [--scale N,N,...] [--families LIST]\n"
+    "                    [--repeat N] [--timeout S] [--in-process]\n"
     "                    [--python PATH] [--no-plots]\n"
     "                    [--quiet]\n"
     "                    [--help]\n"
@@ -44,6 +48,9 @@ const char kUsage[] =
     "non-finite or miscounted states is an error row (its reason in the error field, e.g.\n"
     "\"killed by SIGSEGV\", \"exit(3)\", \"timed out after 600 s\") and the others go on.\n"
     "results.json, results.csv and report.md are rewritten (atomically) after every run.\n"
+    "Scenarios of 3 or more balls with a libpool reference also get a predictability horizon:\n"
+    "the time until each run departs 1 cm from libpool, beside libpool against itself with its\n"
+    "start 1 nm, 1 um and 1 mm off (DIR/horizon.json, DIR/<scenario>_horizon.png).\n"
     "\n"
     "  --scenario FILE  libpool-scenario/1 file; repeat it or list several files after it\n"
     "                   (default: every compare/scenarios/*.json)\n"
@@ -57,6 +64,12 @@ const char kUsage[] =
     "                   reference is libpool's result with LINK steps, which is not exact\n"
     "                   (\"reference_exact\": false): the errors are the engines' disagreement;\n"
     "                   libpool's rows say what share of its time went to link steps\n"
+    "  --scale LIST     also run the scale families at these ball counts (e.g. 16,64,256,1024;\n"
+    "                   2 to 4096): a break on a table of N / 16 standard areas and a gas of\n"
+    "                   balls, a quarter of them rolling (written to DIR/scenarios/); reported as\n"
+    "                   CPU per simulated second against N at equal predictability; a benchmark\n"
+    "                   (the 1,024-ball runs at dt 1e-5 take minutes each)\n"
+    "  --families LIST  the scale families to run: break, gas (default both)\n"
     "  --repeat N       time every run at least N times (median and minimum reported; default 1,\n"
     "                   short runs are repeated anyway until 0.2 s of CPU): a benchmark\n"
     "  --engines LIST   plugin names or paths to .so modules, comma-separated; a name loads\n"
@@ -68,7 +81,8 @@ const char kUsage[] =
     "  --plugin-dir DIR where plugin names are looked up (default: next to pool-compare)\n"
     "  --spread N       perturbed runs (1 um moves of the lead ball) measuring the spread of\n"
     "                   outcomes in scenarios of 3 or more balls (default 8, 0 = off; the\n"
-    "                   default sweep skips them below dt 1e-4, a --dt list does not)\n"
+    "                   default sweep skips them below dt 1e-4, a --dt list does not; scale\n"
+    "                   scenarios have none: their predictability is the horizon)\n"
     "  --timeout S      wall-clock limit of one run (measured run, timing repetitions and\n"
     "                   perturbed runs together), s; the run is killed past it (default 600,\n"
     "                   0 = none)\n"
@@ -99,6 +113,8 @@ struct Options {
 	bool airborne = false;
 	bool link = false;
 	int repeat = 1;
+	std::vector<int> scale;  ///< ball counts of the scale families (empty: none)
+	std::vector<std::string> families = scale_families();
 };
 
 int usage_error(const std::string &message) {
@@ -237,6 +253,27 @@ int parse_args(int argc, char **argv, Options *o) {
 			o->airborne = true;
 		} else if (arg == "--link") {
 			o->link = true;
+		} else if (arg == "--scale") {
+			if (!value(&v) || split(v).empty())
+				return usage_error("--scale needs a comma-separated list of ball counts");
+			o->scale.clear();
+			for (const std::string &item : split(v)) {
+				double n;
+				if (!parse_double(item, &n) || n != static_cast<int>(n) || n < 2 || n > kScaleMaxBalls)
+					return usage_error("--scale: '" + item + "' is not a ball count in [2, " +
+					                   std::to_string(kScaleMaxBalls) + "]");
+				o->scale.push_back(static_cast<int>(n));
+			}
+		} else if (arg == "--families") {
+			if (!value(&v) || split(v).empty())
+				return usage_error("--families needs a comma-separated list of scale families (break, gas)");
+			o->families.clear();
+			for (const std::string &item : split(v)) {
+				const std::vector<std::string> &known = scale_families();
+				if (std::find(known.begin(), known.end(), item) == known.end())
+					return usage_error("--families: unknown family '" + item + "' (break, gas)");
+				o->families.push_back(item);
+			}
 		} else if (arg == "--repeat") {
 			double n;
 			if (!value(&v) || !parse_double(v, &n) || n < 1 || n > 10000 || n != static_cast<int>(n))
@@ -384,7 +421,7 @@ int main(int argc, char **argv) {
 			return usage_error("--link: no scenario files in " POOL_COMPARE_DEFAULT_SCENARIO_DIR "/link");
 		o.scenarios.insert(o.scenarios.end(), link.begin(), link.end());
 	}
-	if (o.scenarios.empty()) {
+	if (o.scenarios.empty() && o.scale.empty()) {
 		o.scenarios = default_scenarios(POOL_COMPARE_DEFAULT_SCENARIO_DIR);
 		if (o.scenarios.empty())
 			return usage_error("no scenario files in " POOL_COMPARE_DEFAULT_SCENARIO_DIR);
@@ -400,6 +437,22 @@ int main(int argc, char **argv) {
 		scenarios.push_back(std::move(s));
 	}
 
+	// The scale families, generated here and written to DIR/scenarios/ (pool-sim runs them too).
+	std::vector<std::pair<std::string, std::string>> generated; // file name, text
+	for (const std::string &family : o.families)
+		for (int n : o.scale) {
+			std::string json, error;
+			std::unique_ptr<Scenario> s;
+			const std::string name = scale_scenario_name(family, n);
+			if (!scale_scenario_json(family, n, &json, &error) || !parse_scenario(name, json, &s, &error)) {
+				std::cerr << "pool-compare: " << error << "\n";
+				return 2;
+			}
+			s->family = family;
+			scenarios.push_back(std::move(s));
+			generated.push_back({name + ".json", json});
+		}
+
 	std::unique_ptr<BenchPublisher> publisher;
 	if (!o.lcm_url.empty()) {
 		std::string error;
@@ -414,12 +467,27 @@ int main(int argc, char **argv) {
 		return 2;
 	}
 
+	if (!generated.empty()) {
+		if (!make_dirs(o.out + "/scenarios")) {
+			std::cerr << "pool-compare: --out: cannot create directory '" << o.out << "/scenarios'\n";
+			return 2;
+		}
+		for (const auto &[file, json] : generated) {
+			std::string error;
+			if (!write_file(o.out + "/scenarios/" + file, json + "\n", &error)) {
+				std::cerr << "pool-compare: " << error << "\n";
+				return 2;
+			}
+		}
+	}
+
 	std::string command_line = "pool-compare";
 	for (int i = 1; i < argc; ++i)
 		command_line += std::string(" ") + argv[i];
 
 	int status = 0;
 	std::vector<Record> records;
+	std::vector<ScenarioHorizons> horizons;
 	EngineLog engine_log(o.out + "/engines.log");
 	// Every finished run is on disk at once: a harness that dies later loses none of them.
 	bool save_failed = false;
@@ -428,7 +496,8 @@ int main(int argc, char **argv) {
 		std::string error;
 		if (write_results_json(o.out + "/results.json", records, &error) &&
 		    write_results_csv(o.out + "/results.csv", records, &error) &&
-		    write_report(o.out, records, command_line, plots, &error))
+		    (horizons.empty() || write_horizon_json(o.out + "/horizon.json", records, horizons, &error)) &&
+		    write_report(o.out, records, command_line, plots, &error, horizons))
 			return true;
 		if (!save_failed)
 			std::cerr << "pool-compare: " << error << "\n";
@@ -450,6 +519,28 @@ int main(int argc, char **argv) {
 			ref = make_no_reference(*scenario, error);
 		}
 		const bool many_balls = scenario->parsed.ball_count >= 3;
+		// A chaotic scene's predictability: libpool against itself here, each run in run_engine.
+		std::vector<double> track_times;
+		if (horizon_applies(*scenario, *ref)) {
+			ScenarioHorizons h;
+			h.scenario = scenario->name;
+			h.balls = scenario->parsed.ball_count;
+			h.family = scenario->family;
+			h.end_time = ref->end_time;
+			const double t0 = cpu_now();
+			if (!self_horizons(*scenario, *ref, &h.self, &error)) {
+				std::cerr << "pool-compare: " << error << " (no horizons)\n";
+				status = 1;
+			} else {
+				track_times = horizon_times(ref->end_time);
+				if (!o.quiet)
+					std::cerr << "  " << scenario->name << " / libpool against itself: horizons "
+					          << h.self[0].horizon.seconds << ", " << h.self[1].horizon.seconds << ", "
+					          << h.self[2].horizon.seconds << " s (start 1 nm, 1 um, 1 mm off; "
+					          << cpu_now() - t0 << " s CPU)\n";
+				horizons.push_back(std::move(h));
+			}
+		}
 		for (const Plugin &plugin : plugins) {
 			std::vector<std::string> unexpressed;
 			if (unsupported_models(*scenario, plugin, &unexpressed) && !unexpressed.empty()) {
@@ -470,7 +561,8 @@ int main(int argc, char **argv) {
 				// The perturbed runs of the default sweep stop at 1e-4: at 1e-5 they would cost
 				// 8 x 14 s of CPU for the break alone.
 				const bool spread = plugin.api->event_driven || o.dts_given || dt >= 1e-4;
-				settings.spread_runs = many_balls && spread ? o.spread : 0;
+				settings.spread_runs = many_balls && spread && scenario->family.empty() ? o.spread : 0;
+				settings.horizon_times = track_times;
 				Record rec;
 				const std::string title = scenario->name + " / " + plugin.api->name + " / " +
 				                          (plugin.api->event_driven ? std::string("event") : "dt " + fmt_dt(dt));
@@ -513,6 +605,14 @@ int main(int argc, char **argv) {
 	const std::string links = link_table(records, false);
 	if (!links.empty())
 		std::cout << "\n" << links;
+	const std::string chaos = horizon_table(records, horizons, false);
+	if (!chaos.empty())
+		std::cout << "\n" << chaos;
+	for (double perturbation : {1e-3, 1e-6}) {
+		const std::string scale = scale_table(records, horizons, perturbation, false);
+		if (!scale.empty())
+			std::cout << "\n" << scale;
+	}
 	const std::vector<std::string> plots = o.plots ? draw_plots(o) : std::vector<std::string>();
 	if (!save(plots))
 		return 1;

@@ -15,6 +15,12 @@ namespace pool_compare {
 /// "No value" of optional measurements (written as null).
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 
+/// One trajectory's distance from another over time.
+struct ErrorTrack {
+	std::vector<double> t;     ///< s, increasing
+	std::vector<double> error; ///< m, the largest planar distance over the balls at t
+};
+
 /// One record of results.json: a scenario run by one engine at one time step.
 struct Record {
 	std::string scenario;      ///< file stem
@@ -88,6 +94,14 @@ struct Record {
 	long long link_clusters = -1;   ///< clusters formed
 	int reference_exact = -1;       ///< 1 closed form or libpool without LINK steps, 0 libpool with them, -1 no reference
 	std::vector<BallSample> final_balls; ///< final states (not written; for consistency_error)
+
+	// Scale and chaos (pool-compare --scale; docs/comparison.md "Predictability horizon").
+	int balls = 0;                   ///< balls in the scenario
+	std::string family;              ///< scale family ("break", "gas") of a generated scenario, else ""
+	double horizon_seconds = kNone;  ///< s, until the engine's trajectory departs 1 cm from the reference's
+	                                 ///< (NaN: not measured: fewer than 3 balls, or no libpool reference)
+	bool horizon_censored = false;   ///< it never departed: horizon_seconds is the end of the scene
+	ErrorTrack track;                ///< that distance over time (written to horizon.json, not results.json)
 
 	/// Simulated seconds per CPU second.
 	double speed() const { return sim_seconds / cpu_seconds; }

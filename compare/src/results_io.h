@@ -6,9 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "horizon.h"
 #include "metrics.h"
 
+struct json_t;
+
 namespace pool_compare {
+
+/// An error track as a JSON list of [t, error] pairs (a non-finite error as null); new reference.
+json_t *track_json(const ErrorTrack &track);
+
+/// Reads track_json's list back (null errors as infinity).
+ErrorTrack track_from_json(json_t *list);
 
 /// One record as a compact JSON object (the form results.json and LCM carry).
 std::string record_json(const Record &record);
@@ -49,9 +58,11 @@ std::string accuracy_summary(const std::vector<Record> &records, double toleranc
 /// One line describing the machine (CPU model, cores).
 std::string machine_description();
 
-/// Writes report.md: the table, what each engine cannot model, and the plots found in DIR.
+/// Writes report.md: the table, what each engine cannot model, the predictability horizons and
+/// the scale comparison (when horizons were measured), and the plots found in DIR.
 bool write_report(const std::string &dir, const std::vector<Record> &records, const std::string &command_line,
-                  const std::vector<std::string> &plots, std::string *error);
+                  const std::vector<std::string> &plots, std::string *error,
+                  const std::vector<ScenarioHorizons> &horizons = {});
 
 } // namespace pool_compare
 

@@ -1,5 +1,7 @@
 #include "runner.h"
 
+#include "horizon.h"
+
 #include <time.h>
 
 #include <algorithm>
@@ -248,6 +250,8 @@ Record blank_record(const Scenario &scenario, const Reference &ref, const Plugin
 	rec.dt = rec.event_driven ? kNone : settings.dt;
 	rec.models_known = unsupported_models(scenario, plugin, &rec.unsupported_models);
 	rec.reference_exact = ref.has_truth() ? ref.exact() : -1;
+	rec.balls = scenario.parsed.ball_count;
+	rec.family = scenario.family;
 	return rec;
 }
 
@@ -326,14 +330,41 @@ Record run_engine(const Scenario &scenario, const Reference &ref, const Plugin &
 			double asked; ///< the sample instant asked for (t is the step the engine reached)
 		};
 		std::vector<Sample> samples;
-		for (double t : sample_times(ref, settings.max_samples)) {
+		// The metrics' instants and the horizon's, in one pass: 1 for a metric sample, 2 for a
+		// horizon instant, 3 for both.
+		std::vector<std::pair<double, int>> instants;
+		for (double t : sample_times(ref, settings.max_samples))
+			instants.push_back({t, 1});
+		for (double t : settings.horizon_times)
+			instants.push_back({t, 2});
+		std::sort(instants.begin(), instants.end());
+		for (size_t k = 0; k + 1 < instants.size();)
+			if (instants[k].first == instants[k + 1].first) {
+				instants[k].second |= instants[k + 1].second;
+				instants.erase(instants.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+			} else {
+				++k;
+			}
+		const double far = off_play_distance(scenario);
+		for (const auto &[t, use] : instants) {
 			if (t > 0.0 && !run.advance(t, &rec.error))
 				return rec;
 			const double reached = t > 0.0 ? engine_time(run.stats(), t) : 0.0;
 			std::vector<BallSample> balls;
 			if (!run.balls(scenario, &balls, &rec.error))
 				return invalid(&rec, reached);
-			samples.push_back({reached, std::move(balls), ref.state_at(reached), t});
+			std::vector<BallSample> truth = ref.state_at(reached);
+			if (use & 2) {
+				rec.track.t.push_back(reached);
+				rec.track.error.push_back(trajectory_distance(balls, truth, far));
+			}
+			if (use & 1)
+				samples.push_back({reached, std::move(balls), std::move(truth), t});
+		}
+		if (!rec.track.t.empty()) {
+			const Horizon h = departure(rec.track, kHorizonThreshold);
+			rec.horizon_seconds = h.seconds;
+			rec.horizon_censored = h.censored;
 		}
 		// Airborne: positions at the reference's landing instants (xy) and heights at its apex
 		// instants, engine and reference compared at the step the engine reached.

@@ -16,6 +16,9 @@ struct RunSettings {
 	int max_repetitions = 2000;    ///< cap of those repetitions
 	int min_repetitions = 1;       ///< timed runs at least, however long (pool-compare --repeat)
 	int max_samples = 150;         ///< cap of the instants at which states are compared
+	/// Instants at which the distance to the reference is tracked for the predictability horizon
+	/// (horizon_times; empty: not measured). They do not enter the other metrics.
+	std::vector<double> horizon_times;
 };
 
 /// The measured record. A failing engine gives a record whose error field says why.

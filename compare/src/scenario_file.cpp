@@ -72,33 +72,59 @@ bool load_scenario(const std::string &path, std::unique_ptr<Scenario> *out, std:
 	return true;
 }
 
-std::string perturbed_json(const std::string &json, int id, double dx, double dy) {
+namespace {
+
+// The document with each ball moved by move(index in the list, id) = (dx, dy), or "" when it is
+// not a scenario's JSON or no ball moved.
+template <typename Move>
+std::string moved_json(const std::string &json, Move move) {
 	json_error_t jerr;
 	json_t *root = json_loadb(json.data(), json.size(), 0, &jerr);
 	if (!root)
 		return "";
-	std::string result;
-	json_t *balls = json_object_get(root, "balls");
+	bool moved = false;
 	size_t i;
 	json_t *ball;
-	json_array_foreach(balls, i, ball) {
+	json_array_foreach(json_object_get(root, "balls"), i, ball) {
 		json_t *ball_id = json_object_get(ball, "id");
 		json_t *pos = json_object_get(ball, "pos");
-		if (!json_is_integer(ball_id) || json_integer_value(ball_id) != id || json_array_size(pos) < 2)
+		double dx = 0.0, dy = 0.0;
+		if (!json_is_integer(ball_id) || json_array_size(pos) < 2 ||
+		    !move(i, static_cast<int>(json_integer_value(ball_id)), &dx, &dy))
 			continue;
-		double x = json_number_value(json_array_get(pos, 0)) + dx;
-		double y = json_number_value(json_array_get(pos, 1)) + dy;
-		json_array_set_new(pos, 0, json_real(x));
-		json_array_set_new(pos, 1, json_real(y));
-		char *text = json_dumps(root, JSON_COMPACT | JSON_REAL_PRECISION(17));
-		if (text) {
-			result = text;
-			free(text);
-		}
-		break;
+		json_array_set_new(pos, 0, json_real(json_number_value(json_array_get(pos, 0)) + dx));
+		json_array_set_new(pos, 1, json_real(json_number_value(json_array_get(pos, 1)) + dy));
+		moved = true;
+	}
+	std::string result;
+	char *text = moved ? json_dumps(root, JSON_COMPACT | JSON_REAL_PRECISION(17)) : nullptr;
+	if (text) {
+		result = text;
+		free(text);
 	}
 	json_decref(root);
 	return result;
+}
+
+} // namespace
+
+std::string perturbed_json(const std::string &json, int id, double dx, double dy) {
+	return moved_json(json, [&](size_t, int ball, double *x, double *y) {
+		*x = dx;
+		*y = dy;
+		return ball == id;
+	});
+}
+
+std::string perturbed_all_json(const std::string &json, double distance, double turn) {
+	// Golden-ratio steps spread the directions evenly whatever the number of balls.
+	const double golden = 0.6180339887498949;
+	return moved_json(json, [&](size_t index, int, double *x, double *y) {
+		const double angle = 2.0 * M_PI * std::fmod(turn + golden * static_cast<double>(index), 1.0);
+		*x = distance * std::cos(angle);
+		*y = distance * std::sin(angle);
+		return true;
+	});
 }
 
 } // namespace pool_compare

@@ -18,6 +18,7 @@ struct Scenario {
 	std::string name;        ///< file stem, the "scenario" field of results
 	std::string json;        ///< the document as given to the plugins
 	pool_scenario parsed{};  ///< owned, freed by the destructor
+	std::string family;      ///< scale family of a generated scenario (scale_scenarios.h), else ""
 
 	Scenario() = default;
 	Scenario(const Scenario &) = delete;
@@ -39,6 +40,10 @@ bool parse_scenario(const std::string &name, const std::string &json, std::uniqu
 
 /// The same document with ball `id` moved by (dx, dy) m on the cloth. "" on failure.
 std::string perturbed_json(const std::string &json, int id, double dx, double dy);
+
+/// The same document with every ball moved by `distance` m on the cloth, ball k (in the list) in
+/// the direction of angle 2 pi frac(turn + k / golden ratio). "" on failure.
+std::string perturbed_all_json(const std::string &json, double distance, double turn);
 
 } // namespace pool_compare
 

@@ -1,4 +1,4 @@
-// Ball-ball friction by the def's model (docs/physics.md "Optional models"): "constant" is
+// Ball-ball friction by the def's model (docs/physics.md "Models"): "constant" is
 // params.mu_ball; "alciatore" falls with the slip speed at the contact, as measured.
 #ifndef POOL_BALL_FRICTION_H
 #define POOL_BALL_FRICTION_H

@@ -115,13 +115,16 @@ double pool_contact_first_falling_root(const double *p, int deg, double T) {
 	if (deg <= 2 && closed_form_safe(p, deg))
 		return first_falling_root_quadratic(p[0], deg >= 1 ? p[1] : 0.0, deg >= 2 ? p[2] : 0.0, T);
 	if (p[0] > 0.0 && isfinite(T)) {
-		// Apart by more than the other terms can take over the window (|p_k| T^k summed, with a
-		// margin for that sum's rounding): no root, without the quartic solver. Most pairs the
-		// schedule asks about over a short window (a linked ball's step) end here.
+		// Apart by more than the falling terms can take over the window: for t in [0, T] a term
+		// p_k t^k with p_k >= 0 only adds, and one with p_k < 0 takes at most |p_k| T^k (summed,
+		// with a margin for that sum's rounding). No root then, without the quartic solver. Most
+		// pairs the schedule asks about over a short window (a linked ball's step) end here, and
+		// so do touching pairs moving apart (p_1 > 0) that nothing brings back in the window.
 		double reach = 0.0, power = 1.0;
 		for (int k = 1; k <= deg; ++k) {
 			power *= T;
-			reach += fabs(p[k]) * power;
+			if (p[k] < 0.0)
+				reach -= p[k] * power;
 		}
 		if (reach * (1.0 + 1e-12) < p[0])
 			return INFINITY;
@@ -148,6 +151,20 @@ double pool_contact_first_falling_root(const double *p, int deg, double T) {
 			break;
 	}
 	return lost_crossing(p, deg, T);
+}
+
+double pool_contact_first_falling_root_from(const double *p, int deg, double lo, double T) {
+	if (!(lo <= T))
+		return INFINITY;
+	// q(u) = p(lo + u): a Taylor shift, then the window [0, T - lo].
+	double q[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+	for (int k = 0; k <= deg; ++k)
+		q[k] = p[k];
+	for (int i = 0; i < deg; ++i)
+		for (int k = deg - 1; k >= i; --k)
+			q[k] += lo * q[k + 1];
+	const double u = pool_contact_first_falling_root(q, deg, T - lo);
+	return u < INFINITY ? lo + u : INFINITY;
 }
 
 double pool_contact_next(const pool_contact_gap *g, double T) {

@@ -49,6 +49,10 @@ double pool_contact_next(const pool_contact_gap *g, double T);
 /// gap closes), INFINITY when none: the rule for bodies apart, when the caller knows they are.
 double pool_contact_first_falling_root(const double *p, int deg, double T);
 
+/// First root in [lo, T] of the same polynomial where it falls, INFINITY when none: the search
+/// past a root that was no contact (a ghost: the contact point outside the part's span).
+double pool_contact_first_falling_root_from(const double *p, int deg, double lo, double T);
+
 /// 1 when bodies in contact (gap <= POOL_TOUCH_TOLERANCE) collide now by the rules above.
 int pool_contact_now(double gap, double speed, double accel);
 

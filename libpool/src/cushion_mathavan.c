@@ -6,7 +6,7 @@
 // dP at I (the paper's equations (12)-(17), derived again in vector form):
 //   1. the normal impulse dP along −(0, cos θ, sin θ);
 //   2. friction at I, in the tangent plane (x, y' = (0, −sin θ, cos θ)), opposing the slip
-//      s_I = (v_x + R(ω_y sin θ − ω_z cos θ), −v_y sin θ + v_z cos θ + R ω_x), at most mu_cushion dP;
+//      s_I = (v_x + R(ω_y sin θ − ω_z cos θ), −v_y sin θ + v_z cos θ + R ω_x), at most mu_cushion_mathavan dP;
 //   3. the cloth's normal impulse dP_C: whatever brings v_z back to 0 (the ball stays on the
 //      cloth), never pulling (dP_C >= 0);
 //   4. friction at C opposing s_C = (v_x − R ω_y, v_y + R ω_x), at most mu_table dP_C.
@@ -134,7 +134,7 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 		return POOL_MATHAVAN_SEPARATING; // a normal straight down: not a rail impact
 	const pool_vec3 ey = pool_v3_scale(nh, -1.0 / c), ez = pool_v3(0.0, 0.0, 1.0);
 	const pool_vec3 ex = pool_v3_cross(ey, ez);
-	const contact_law k = {p->ball_mass, p->ball_radius, c, -n.z, p->mu_cushion, p->mu_table,
+	const contact_law k = {p->ball_mass, p->ball_radius, c, -n.z, p->mu_cushion_mathavan, p->mu_table,
 	                       1.0 / p->ball_mass, 5.0 / (2.0 * p->ball_mass * p->ball_radius)};
 	integration it = {{pool_v3_dot(st->vel, ex), pool_v3_dot(st->vel, ey), pool_v3_dot(st->vel, ez),
 	                   pool_v3_dot(st->omega, ex), pool_v3_dot(st->omega, ey), pool_v3_dot(st->omega, ez)},
@@ -142,7 +142,7 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 	const double z0 = approach(&k, &it.b);
 	if (!(z0 > 0.0))
 		return POOL_MATHAVAN_SEPARATING;
-	const double e = p->e_cushion;
+	const double e = p->e_cushion_mathavan;
 	// The impulse of a frictionless impact, (1 + e) M ż'_0 / cos² θ (the cloth takes the vertical
 	// part), split into `steps`; friction changes the real total by some per cent.
 	const double dP = (1.0 + e) * k.M * z0 / (c * c) / steps;

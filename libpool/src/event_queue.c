@@ -1,6 +1,8 @@
 // Indexed binary min-heap of predicted events with a total, deterministic order.
 #include "event_queue.h"
 
+#include "assert.h"
+
 int pool_event_key_cmp(const pool_event_key *a, const pool_event_key *b) {
 	if (a->time != b->time)
 		return a->time < b->time ? -1 : 1;
@@ -62,6 +64,7 @@ void pool_event_queue_build(pool_event_queue *q, int count) {
 }
 
 void pool_event_queue_update(pool_event_queue *q, int slot, const pool_event_key *key) {
+	POOL_ASSERT(slot >= 0 && slot < q->count && key->slot == slot);
 	q->keys[slot] = *key;
 	int i = q->pos[slot];
 	sift_up(q, i);

@@ -33,8 +33,24 @@ static inline double pool_rail_contact_line(const pool_table_def *table, double 
 pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double along);
 
 /// Contact normal of a ball centred at pos against a rail's nose (height h): from the nearest
-/// point of the nose line to the centre, normalised.
+/// point of the nose to the centre, normalised. The nose is its line outside the pocket mouths:
+/// over a mouth its nearest point is the end of the nose at the mouth's edge.
 pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail);
+
+/// The point of a rail's nose nearest to a ball centred at pos: on its line at pos's coordinate
+/// along the rail, or over a pocket mouth the nearest end of the nose; 0 when the rail has no
+/// nose left (its mouths cover it).
+int pool_nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 *point);
+
+/// The point of each piece of a rail's nose (the rail less its mouths: one piece on a short
+/// rail, two on a long rail with side pockets) nearest to a ball centred at pos, into
+/// points[0..2); returns how many pieces there are (0: the mouths cover the rail). A ball over a
+/// mouth narrower than 2R touches both its ends at once (pool_nose_nearest has only one).
+int pool_nose_pieces_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 points[2]);
+
+/// The nose's ends on a rail: the coordinates along the rail where a pocket mouth begins or ends
+/// (the mouths' edges, within the rail), into ends[0..4); returns how many.
+int pool_nose_ends(const pool_table_def *table, pool_rail rail, double ends[4]);
 
 /// The pocket a ball centred at pos has fallen into on the cloth: past a rail's contact line
 /// (contact_distance inside its nose line) inside that rail's pocket mouth (the first such
@@ -46,5 +62,10 @@ pool_pocket pool_table_pocket_past(const pool_table_def *table, double contact_d
 /// ball into the cushion; returns how many (at most 4), in rail order.
 int pool_table_cushions_near(const pool_table_def *table, double contact_distance, pool_vec3 pos, double gap,
                              pool_rail rails[4], pool_vec3 into[4]);
+
+/// m, the smallest gap between a ball of radius R centred at pos and a cushion nose outside the
+/// pocket mouths (its distance to the nose line, less R; negative: inside the nose), and in
+/// *rail that cushion (POOL_RAIL_NONE, INFINITY when the ball is over mouths only).
+double pool_table_nose_gap(const pool_table_def *table, pool_vec3 pos, double R, pool_rail *rail);
 
 #endif

@@ -5,12 +5,15 @@
 #define POOL_HANDLERS_H
 
 #include "pool/sim.h"
+#include "table_shape.h"
 
 /// What a handler knows of the event besides the states.
 typedef struct pool_event_context {
 	const pool_sim_def *def; ///< table, parameters, planar or airborne
 	pool_rail rail;          ///< the rail of a cushion event
-	pool_pocket pocket;      ///< the pocket of a pocket event
+	pool_pocket pocket;      ///< the pocket of a pocket event (of the facing or jaw of a cushion event)
+	const pool_table_shape *shape; ///< the table's nose curve
+	int part;                ///< the part of the nose curve a cushion event touches (-1: the rail's nose line)
 } pool_event_context;
 
 /// Applies event `type` to the states s[0..count) of its balls, evolved to its instant (for two

@@ -3,12 +3,15 @@
 
 #include <string.h>
 
+#include "assert.h"
 #include "memory.h"
 #include "motion.h"
 
 void pool_history_clear(pool_history *h) {
 	h->n_events = 0;
 	h->n_states = 0;
+	h->checked_events = 0;
+	h->checked_states = 0;
 }
 
 void pool_history_free(pool_history *h, const pool_allocator *a) {
@@ -73,12 +76,14 @@ pool_result pool_history_record(pool_history *h, const pool_allocator *a, double
 	// caller fails the shot rather than write past the arrays.
 	if (pool_history_reserve(h, a, 1, m))
 		return POOL_ERR_OUT_OF_MEMORY;
+	POOL_ASSERT(h->n_events == 0 || t >= h->events[h->n_events - 1].time); // events in time order
 	pool_event *e = &h->events[h->n_events++];
 	memset(e, 0, sizeof *e); // padding too: event lists compare bit for bit
 	e->time = t;
 	e->type = type;
 	e->rail = rail;
 	e->pocket = pocket;
+	e->part = POOL_PART_NONE; // the world names the part of a cushion event (pockets "jaws", "none")
 	e->ball_count = m;
 	e->first_state = h->n_states;
 	for (int k = 0; k < m; ++k)
@@ -95,22 +100,23 @@ void pool_history_state_at(const pool_history *h, const pool_params *p, int n, d
 	}
 }
 
-int pool_history_valid(const pool_history *h, int n) {
-	for (int e = 0; e < h->n_events; ++e) {
+int pool_history_valid(pool_history *h, int n) {
+	for (int e = h->checked_events; e < h->n_events; ++e) {
 		const pool_event *ev = &h->events[e];
 		if (ev->first_state < 0 || ev->first_state + ev->ball_count > h->n_states)
 			return 0;
 		if (e > 0 && !(ev->time >= h->events[e - 1].time))
 			return 0;
 	}
-	for (int i = 0; i < n; ++i) {
-		int k = h->last[i];
-		if (k < 0 || k >= h->n_states)
+	for (int k = h->checked_states; k < h->n_states; ++k) {
+		const int prev = h->state_prev[k];
+		if (prev >= k || (prev >= 0 && (h->state_time[prev] > h->state_time[k] || h->states[prev].id != h->states[k].id)))
 			return 0;
-		const int32_t id = h->states[k].id;
-		for (int prev = h->state_prev[k]; prev >= 0; k = prev, prev = h->state_prev[k])
-			if (prev >= k || h->state_time[prev] > h->state_time[k] || h->states[prev].id != id)
-				return 0;
 	}
+	for (int i = 0; i < n; ++i)
+		if (h->last[i] < 0 || h->last[i] >= h->n_states)
+			return 0;
+	h->checked_events = h->n_events;
+	h->checked_states = h->n_states;
 	return 1;
 }

@@ -17,6 +17,7 @@ typedef struct pool_history {
 	int n_states, cap_states;
 	int *last;                ///< each ball's latest state (by ball index), or -1
 	int cap_balls;
+	int checked_events, checked_states; ///< those pool_history_valid has checked already
 } pool_history;
 
 /// Forgets the shot, keeping the memory.
@@ -44,8 +45,9 @@ pool_result pool_history_record(pool_history *h, const pool_allocator *a, double
 /// first state when t precedes them all), evolved in closed form.
 void pool_history_state_at(const pool_history *h, const pool_params *p, int n, double t, pool_ball_state *out);
 
-/// 1 when every ball's chain runs back in time order to a state of that ball and every event's
-/// states lie in the history.
-int pool_history_valid(const pool_history *h, int n);
+/// 1 when every event since the last call is no earlier than the one before and its states lie
+/// in the history, and every state recorded since follows its ball's previous one in time; so
+/// every ball's chain runs back in time order (n balls). Checks each entry once.
+int pool_history_valid(pool_history *h, int n);
 
 #endif

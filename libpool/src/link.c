@@ -6,11 +6,13 @@
 #include <math.h>
 #include <string.h>
 
+#include "assert.h"
 #include "contact.h"
 #include "geometry.h"
 #include "handlers.h"
 #include "memory.h"
 #include "motion.h"
+#include "predict.h"
 #include "vec3.h"
 
 // ---- the world, as LINK may ask it
@@ -42,6 +44,7 @@ void pool_link_init(pool_link *link, const pool_sim_def *def, double dc, const p
 
 void pool_link_clear(pool_link *link) {
 	link->n = 0;
+	link->starved = 0;
 	memset(&link->stats, 0, sizeof link->stats);
 	memset(&link->failed_step, 0, sizeof link->failed_step);
 	link->failed_size = 0;
@@ -49,16 +52,17 @@ void pool_link_clear(pool_link *link) {
 }
 
 void pool_link_free(pool_link *link) {
-	void *arrays[] = {link->cluster_of, link->loose, link->tail,   link->streak, link->clusters,
-	                  link->states,     link->members, link->group, link->leaving, link->accel};
+	void *arrays[] = {link->cluster_of, link->loose,   link->tail,  link->v0,      link->streak, link->clusters,
+	                  link->states,     link->now,     link->members, link->mark, link->group, link->leaving,
+	                  link->accel};
 	pool_link_workspace_free(&link->ws, link->alloc);
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
 		pool_mem_free(link->alloc, arrays[i]);
-	link->cluster_of = link->loose = link->members = link->group = NULL;
-	link->tail = NULL;
+	link->cluster_of = link->loose = link->members = link->mark = link->group = NULL;
+	link->tail = link->v0 = NULL;
 	link->streak = NULL;
 	link->clusters = NULL;
-	link->states = link->leaving = NULL;
+	link->states = link->now = link->leaving = NULL;
 	link->accel = NULL;
 	link->cap = link->n = 0;
 }
@@ -68,15 +72,19 @@ pool_result pool_link_reserve(pool_link *link, int balls) {
 		return POOL_OK;
 	const int cap = pool_mem_next_cap(link->cap, balls);
 	void **arrays[] = {(void **)&link->cluster_of, (void **)&link->loose,   (void **)&link->tail,
-	                   (void **)&link->streak,     (void **)&link->clusters, (void **)&link->states,
-	                   (void **)&link->members,    (void **)&link->group,   (void **)&link->leaving,
+	                   (void **)&link->v0,         (void **)&link->streak,  (void **)&link->clusters,
+	                   (void **)&link->states,     (void **)&link->now,     (void **)&link->members,
+	                   (void **)&link->mark,       (void **)&link->group,   (void **)&link->leaving,
 	                   (void **)&link->accel};
 	const size_t elems[] = {sizeof(int),
 	                        sizeof(int),
 	                        6 * sizeof(double),
+	                        6 * sizeof(double),
 	                        POOL_LINK_PARTNERS * sizeof(pool_contact_streak),
 	                        sizeof(pool_cluster),
 	                        sizeof(pool_ball_state),
+	                        sizeof(pool_ball_state),
+	                        sizeof(int),
 	                        sizeof(int),
 	                        sizeof(int),
 	                        sizeof(pool_ball_state),
@@ -91,12 +99,12 @@ void pool_link_add_ball(pool_link *link, int i) {
 	link->cluster_of[i] = -1;
 	link->loose[i] = 0;
 	for (int e = 0; e < 6; ++e)
-		link->tail[6 * i + e] = 0.0;
+		link->tail[6 * i + e] = link->v0[6 * i + e] = 0.0;
 	for (int k = 0; k < POOL_LINK_PARTNERS; ++k) {
 		memset(&link->streak[POOL_LINK_PARTNERS * i + k], 0, sizeof link->streak[0]);
 		link->streak[POOL_LINK_PARTNERS * i + k].partner = -1;
 	}
-	link->clusters[i].active = 0;
+	memset(&link->clusters[i], 0, sizeof link->clusters[i]);
 	link->n = i + 1;
 }
 
@@ -109,6 +117,15 @@ void pool_link_failure(const pool_link *link, double *residual, int *balls, int 
 		*balls = link->failed_size;
 	if (contacts)
 		*contacts = link->failed_step.contacts;
+}
+
+// 1 when `events` more LINK events fit under max_events. When they do not, LINK does nothing and
+// the shot stops there (POOL_STOP_MAX_EVENTS): a LINK event never takes the count past the limit.
+static int has_room(pool_link *link, int events) {
+	if (events <= 0 || link->world.room(link->world.ctx) >= events)
+		return 1;
+	link->starved = 1;
+	return 0;
 }
 
 // ---- the trigger
@@ -178,11 +195,15 @@ static void step_end_state(const pool_link *link, int i, double t, pool_ball_sta
 }
 
 // Ball i joins cluster c at t: it (or the whole cluster it is in) starts linked segments there.
+static void end_step_early(pool_link *link, int c, double t);
+
 static void join(pool_link *link, int i, int c, double t) {
+	POOL_ASSERT(i >= 0 && i < link->n && c >= 0 && c < link->n && link->clusters[c].active);
 	if (link->cluster_of[i] == c)
 		return;
 	if (link->cluster_of[i] >= 0) {
 		const int other = link->cluster_of[i];
+		end_step_early(link, other, t); // (absorb recorded it: nothing left to do here)
 		link->clusters[other].active = 0;
 		for (int k = 0; k < link->n; ++k)
 			if (link->cluster_of[k] == other)
@@ -210,46 +231,104 @@ static int pressed_with(const pool_ball_state *s, pool_vec3 a0, pool_vec3 a1) {
 	return approach_accel > 0.0;
 }
 
-int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s) {
-	const pool_params *p = &link->def->params;
-	return pressed_with(s, pool_motion_accel(p, &s[0]), pool_motion_accel(p, &s[1]));
+// A ball's acceleration without contacts: its closed-form motion's, or for a linked ball (whose
+// segment is uniform over a step) that of the state it would resume if released (gravity above
+// the cloth, the cloth's friction on it).
+static pool_vec3 free_accel(const pool_link *link, const pool_ball_state *s) {
+	pool_ball_state f = *s;
+	if (f.motion == POOL_MOTION_LINKED) {
+		f.motion = POOL_MOTION_SLIDING;
+		pool_motion_after_impulse(link->def, &f);
+	}
+	return pool_motion_accel(&link->def->params, &f);
 }
 
-// Every ball in play touching one of cluster c's balls at t and closing on it (faster than
-// POOL_LINK_REST_SPEED, up to POOL_LINK_IMPACT_SPEED: faster is a hit, an event) joins it,
-// transitively. A ball that touches without closing stays out:
-// the balls of a frozen rack touch one another, and a step that linked them all would solve
-// the whole rack's contacts; should the cluster press it later, the collision prediction
-// (which sees linked balls) finds the contact and the trigger links it then.
-static void absorb(pool_link *link, int c, double t) {
+int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s) {
+	return pressed_with(s, free_accel(link, &s[0]), free_accel(link, &s[1]));
+}
+
+// The contact of ball k (state sk, outside the cluster) with cluster ball i (si) presses at
+// this instant: they touch (within POOL_LINK_TOUCH_GAP), it is no hit (closing at most
+// POOL_LINK_IMPACT_SPEED: faster is a collision, an event), and k closes faster than
+// POOL_LINK_REST_SPEED or, closing within the rounding of a speed (POOL_APPROACH_EPS, the
+// contact rule's), their free accelerations press them together (gravity on a ball resting on
+// others, the cloth's friction driving a spinning ball into its neighbour). Balls that merely
+// touch stay out: the balls of a frozen rack touch one another, and a step that linked them all
+// would solve the whole rack's contacts.
+static int pressing(const pool_link *link, const pool_ball_state *si, const pool_ball_state *sk) {
 	const double reach = 2.0 * link->def->params.ball_radius + POOL_LINK_TOUCH_GAP;
-	for (int changed = 1; changed;) {
-		changed = 0;
-		for (int k = 0; k < link->n; ++k) {
-			if (link->cluster_of[k] == c)
+	const double dist = pool_v3_len(pool_v3_sub(sk->pos, si->pos));
+	if (!(dist <= reach) || !(dist > 0.0))
+		return 0;
+	const double closing = pool_closing_speed(sk->pos, sk->vel, si->pos, si->vel);
+	if (!(closing <= POOL_LINK_IMPACT_SPEED))
+		return 0;
+	if (closing > POOL_LINK_REST_SPEED)
+		return 1;
+	if (closing < -POOL_APPROACH_EPS)
+		return 0;
+	const pool_ball_state pair[2] = {*sk, *si};
+	return pressed_with(pair, free_accel(link, sk), free_accel(link, si));
+}
+
+// Gathers into link->mark the balls of cluster c at t, the seeds seed[0..m) with the clusters
+// they are in, and every ball in play whose contact with one of them presses (pressing),
+// transitively: one pass over the contacts of every gathered ball, each ball's state at t taken
+// once (link->now). A ball of another cluster brings its whole cluster. Returns how many of
+// the clusters it brings have a step in progress (absorb ends each there, recorded).
+static int gather(pool_link *link, int c, const int *seed, int m, double t) {
+	const int n = link->n;
+	int *queue = link->members, count = 0, cuts = 0;
+	for (int k = 0; k < n; ++k) {
+		state_at(link, k, t, &link->now[k]);
+		link->mark[k] = c >= 0 && link->cluster_of[k] == c;
+	}
+	for (int j = 0; j < m; ++j) {
+		const int other = link->cluster_of[seed[j]];
+		if (other >= 0 && other != c && !link->mark[seed[j]])
+			cuts += link->clusters[other].in_step;
+		for (int k = 0; k < n; ++k)
+			link->mark[k] |= k == seed[j] || (other >= 0 && link->cluster_of[k] == other);
+	}
+	for (int k = 0; k < n; ++k)
+		if (link->mark[k])
+			queue[count++] = k;
+	for (int head = 0; head < count; ++head) {
+		const pool_ball_state *si = &link->now[queue[head]];
+		for (int k = 0; k < n; ++k) {
+			if (link->mark[k] || !in_play(link->now[k].motion) || !pressing(link, si, &link->now[k]))
 				continue;
-			pool_ball_state sk;
-			state_at(link, k, t, &sk);
-			if (!in_play(sk.motion))
-				continue;
-			for (int i = 0; i < link->n; ++i) {
-				if (link->cluster_of[i] != c)
-					continue;
-				pool_ball_state si;
-				state_at(link, i, t, &si);
-				const pool_vec3 d = pool_v3_sub(sk.pos, si.pos);
-				const double dist = pool_v3_len(d);
-				if (!(dist <= reach) || !(dist > 0.0))
-					continue;
-				const double closing = pool_closing_speed(sk.pos, sk.vel, si.pos, si.vel);
-				if (closing > POOL_LINK_REST_SPEED && closing <= POOL_LINK_IMPACT_SPEED) {
-					join(link, k, c, t);
-					changed = 1;
-					break;
+			const int other = link->cluster_of[k];
+			if (other >= 0)
+				cuts += link->clusters[other].in_step;
+			for (int q = 0; q < n; ++q)
+				if (!link->mark[q] && (q == k || (other >= 0 && link->cluster_of[q] == other))) {
+					link->mark[q] = 1;
+					queue[count++] = q;
 				}
-			}
 		}
 	}
+	return cuts;
+}
+
+static pool_result cut_cluster(pool_link *link, int c, double t);
+
+// Joins into cluster c at t the balls gather() marked: the steps in progress of the clusters
+// they bring end there first, each recorded (link_step), so every velocity a step changed is
+// in the history before the balls move on in c.
+static pool_result absorb(pool_link *link, int c, double t) {
+	for (int k = 0; k < link->n; ++k) {
+		const int other = link->cluster_of[k];
+		if (link->mark[k] && other >= 0 && other != c && link->clusters[other].in_step) {
+			const pool_result r = cut_cluster(link, other, t);
+			if (r)
+				return r;
+		}
+	}
+	for (int k = 0; k < link->n; ++k)
+		if (link->mark[k])
+			join(link, k, c, t);
+	return POOL_OK;
 }
 
 // Every member's next event becomes the cluster's step at t_next.
@@ -260,11 +339,7 @@ static void reschedule(pool_link *link, int c, double now) {
 }
 
 // Something from outside changed cluster c: what its last step decided about who leaves no
-// longer holds, and the next step decides afresh.
-// The current step is cut short, so its forces were applied for longer than the time that
-// passed: the next step is POOL_LINK_STEP_TIME again, and the velocities stay the step's mean
-// (its tail, half a step of cloth resistance, is dropped: at most 1/2 mu_roll g
-// POOL_LINK_STEP_MAX, 0.8 mm/s).
+// longer holds, and the next step, POOL_LINK_STEP_TIME long again, decides afresh.
 static void unsettle(pool_link *link, int c) {
 	link->clusters[c].quiet = 0;
 	link->clusters[c].dt = POOL_LINK_STEP_TIME;
@@ -273,6 +348,65 @@ static void unsettle(pool_link *link, int c) {
 			link->loose[k] = 0;
 			drop_tail(link, k);
 		}
+}
+
+// Cluster c's step in progress ends at t, before its planned end: every velocity it changed (the
+// gravity kick, the contact impulses, the cloth wrenches, all applied for the whole step at its
+// start) is taken for the share of the step that passed, v = v0 + (h / dt) (v_end - v0), with h
+// = t - t_start the time it lasted and dt its planned length; the positions are those its mean
+// velocities brought (the history's). Kept whole, a step cut after 0.3 of its 7.5 ms kept a
+// falling ball's whole gravity kick, energy from nowhere (issue 21). The new velocities are a
+// mean of the step's start and end ones, so by convexity the cluster's energy at the cut is at
+// most that same mean of its energies at the step's start and planned end.
+static void end_step_early(pool_link *link, int c, double t) {
+	pool_cluster *cl = &link->clusters[c];
+	if (!cl->in_step)
+		return;
+	const double lasted = t - cl->t_start;
+	POOL_ASSERT(lasted >= 0.0 && t <= cl->t_next); // a step is cut inside itself
+	const double share = cl->step_dt > 0.0 ? fmin(fmax(lasted / cl->step_dt, 0.0), 1.0) : 1.0;
+	for (int k = 0; k < link->n; ++k) {
+		if (link->cluster_of[k] != c)
+			continue;
+		pool_ball_state s;
+		step_end_state(link, k, t, &s);
+		const double *v0 = link->v0 + 6 * k;
+		s.vel = pool_v3_add(pool_v3(v0[0], v0[1], v0[2]),
+		                    pool_v3_scale(pool_v3_sub(s.vel, pool_v3(v0[0], v0[1], v0[2])), share));
+		s.omega = pool_v3_add(pool_v3(v0[3], v0[4], v0[5]),
+		                      pool_v3_scale(pool_v3_sub(s.omega, pool_v3(v0[3], v0[4], v0[5])), share));
+		s.motion = POOL_MOTION_LINKED;
+		drop_tail(link, k);
+		begin_segment(link, k, &s, t);
+	}
+	cl->in_step = 0;
+}
+
+// Cluster c's step ends at t (end_step_early) and a link_step records its balls' states there;
+// the cluster steps again at t, from POOL_LINK_STEP_TIME.
+static pool_result cut_cluster(pool_link *link, int c, double t) {
+	link->clusters[c].t_next = t; // (before the segments restart: their next event is that step)
+	end_step_early(link, c, t);
+	unsettle(link, c);
+	int *idx = link->members;
+	const int m = members(link, c, idx);
+	const pool_result r = record(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
+	link->world.changed(link->world.ctx, idx, m, t);
+	return r;
+}
+
+pool_result pool_link_cut(pool_link *link, const int *inv, int m, double t) {
+	for (int k = 0; k < m; ++k) {
+		const int c = link->cluster_of[inv[k]];
+		if (c < 0 || !link->clusters[c].in_step)
+			continue;
+		if (!has_room(link, 1))
+			return POOL_OK;
+		const pool_result r = cut_cluster(link, c, t);
+		if (r)
+			return r;
+	}
+	return POOL_OK;
 }
 
 // Forms a cluster at t around the balls seed[0..m) (merging every cluster they touch) and
@@ -284,18 +418,27 @@ static pool_result link_begin(pool_link *link, const int *seed, int m, double t)
 		if (in >= 0 && (c < 0 || in < c))
 			c = in;
 	}
+	// Its balls first, and the room for link_begin and the cuts of the steps it ends.
+	const int cuts = gather(link, c, seed, m, t) + (c >= 0 && link->clusters[c].in_step);
+	if (!has_room(link, 1 + cuts))
+		return POOL_OK;
+	if (c >= 0 && link->clusters[c].in_step) {
+		const pool_result rc = cut_cluster(link, c, t);
+		if (rc)
+			return rc;
+	}
 	if (c < 0) {
 		for (c = 0; c < link->n && link->clusters[c].active; ++c) {
 		}
-		link->clusters[c].steps = 0;
+		memset(&link->clusters[c], 0, sizeof link->clusters[c]);
 		link->stats.clusters++;
 	}
 	link->clusters[c].active = 1;
 	link->clusters[c].t_next = t;
 	unsettle(link, c);
-	for (int k = 0; k < m; ++k)
-		join(link, seed[k], c, t);
-	absorb(link, c, t);
+	const pool_result ra = absorb(link, c, t);
+	if (ra)
+		return ra;
 	int *idx = link->members;
 	const int count = members(link, c, idx);
 	// Every ball restarts its segment here, so link_begin records every ball's state at t (the
@@ -492,10 +635,123 @@ static double next_step_length(double dt, double accel) {
 	return fmax(POOL_LINK_STEP_TIME, fmin(fmin(2.0 * dt, POOL_LINK_STEP_MAX), bound));
 }
 
+// Ball i's velocities entering the step: those of s.
+static void set_v0(pool_link *link, int i, const pool_ball_state *s) {
+	double *v0 = link->v0 + 6 * i;
+	v0[0] = s->vel.x, v0[1] = s->vel.y, v0[2] = s->vel.z;
+	v0[3] = s->omega.x, v0[4] = s->omega.y, v0[5] = s->omega.z;
+}
+
+// The step of cluster c's balls idx[0..m) from their positions in s and their velocities v0: on
+// return s holds the step's mean velocities. A step longer than POOL_LINK_STEP_TIME whose solve
+// left a residual above POOL_LINK_LONG_STEP_RESIDUAL is taken again at that length (its velocity
+// error moves the balls by that times dt).
+static pool_result solve(pool_link *link, pool_cluster *cl, const int *idx, pool_ball_state *s, int m,
+                         pool_link_step_stats *st) {
+	for (int pass = 0; pass < 2; ++pass) {
+		for (int k = 0; k < m; ++k) {
+			const double *v0 = link->v0 + 6 * idx[k];
+			s[k].vel = pool_v3(v0[0], v0[1], v0[2]);
+			s[k].omega = pool_v3(v0[3], v0[4], v0[5]);
+			link->accel[k] = s[k].vel;
+		}
+		const pool_result r = pool_link_step(link->def, s, m, cl->dt, &link->ws, link->alloc, st);
+		if (r) {
+			link->failed_step = *st;
+			link->failed_size = m;
+			return r;
+		}
+		if (pass > 0 || !(cl->dt > POOL_LINK_STEP_TIME && st->residual > POOL_LINK_LONG_STEP_RESIDUAL))
+			return POOL_OK;
+		link->stats.pivots += st->pivots;
+		cl->dt = POOL_LINK_STEP_TIME;
+	}
+	return POOL_OK;
+}
+
+// Ball k (state sk, outside) would collide now with cluster ball i moving at the step's mean
+// velocity (si): the schedule's own prediction (predict.h, the contact rule of contact.h), with
+// the step's ball moving uniformly, has them meet at once. At whatever speed: this contact is
+// the step's own doing, not a hit from outside (where faster than POOL_LINK_IMPACT_SPEED is a
+// collision), and it can only be taken inside the step: as an event at the step's start it would
+// cut the step after no time, undoing what drove it, and the cluster would step again for ever.
+static int driven_into(const pool_link *link, const pool_ball_state *si, const pool_ball_state *sk) {
+	const double R = link->def->params.ball_radius;
+	const pool_vec3 dp = pool_v3_sub(sk->pos, si->pos);
+	if (!(pool_v3_len(dp) - 2.0 * R <= POOL_TOUCH_TOLERANCE))
+		return 0;
+	const pool_vec3 da = pool_v3_scale(pool_motion_accel(&link->def->params, sk), 0.5);
+	return pool_predict_ball_ball(dp, pool_v3_sub(sk->vel, si->vel), da, R, POOL_LINK_STEP_TIME) <= 0.0;
+}
+
+// Joins into cluster c the balls in play outside it that the step's mean velocities s[0..m)
+// drive into (driven_into), each entering the next solve with its own velocities (a ball of
+// another cluster brings that cluster, whose step in progress ends there, recorded: two
+// clusters pressing each other are one); returns how many joined. (The link_step of this step
+// is still to be recorded: a cut needs room for itself and that.)
+static int drive_in(pool_link *link, int c, const pool_ball_state *s, int m, double t) {
+	int joined = 0;
+	for (int k = 0; k < link->n; ++k) {
+		const int other = link->cluster_of[k];
+		if (other == c)
+			continue;
+		const int cut = other >= 0 && link->clusters[other].in_step;
+		if (cut && link->world.room(link->world.ctx) < 2)
+			continue; // (left to the collision's events, which stop the shot at the limit)
+		// (Positions do not change at t: gather's are good for the cheap test of distance.)
+		int near = 0;
+		for (int q = 0; q < m && !near; ++q)
+			near = pool_v3_len(pool_v3_sub(link->now[k].pos, s[q].pos)) - 2.0 * link->def->params.ball_radius <=
+			       POOL_TOUCH_TOLERANCE;
+		if (!near)
+			continue;
+		pool_ball_state sk;
+		state_at(link, k, t, &sk);
+		if (!in_play(sk.motion))
+			continue;
+		for (int q = 0; q < m; ++q)
+			if (driven_into(link, &s[q], &sk)) {
+				if (cut && cut_cluster(link, other, t))
+					return joined; // (out of memory: the failed record has failed the shot)
+				for (int j = 0; j < link->n; ++j) // it, or the cluster it is in
+					if (j == k || (other >= 0 && link->cluster_of[j] == other)) {
+						pool_ball_state sj;
+						state_at(link, j, t, &sj);
+						set_v0(link, j, &sj);
+					}
+				join(link, k, c, t);
+				++joined;
+				break;
+			}
+	}
+	return joined;
+}
+
 pool_result pool_link_step_event(pool_link *link, int i, double t) {
 	const int c = link->cluster_of[i];
 	pool_cluster *cl = &link->clusters[c];
-	absorb(link, c, t);
+	// The balls of the next step (gathered afresh at every step), and the room for the events
+	// this one records: the cuts of the clusters it takes in, the pocketed strays, the loose
+	// balls' link_end and the link_step.
+	const int cuts = gather(link, c, NULL, 0, t);
+	int gathered = 0, strays = 0, loose_now = 0;
+	for (int k = 0; k < link->n; ++k) {
+		if (!link->mark[k])
+			continue;
+		++gathered;
+		if (pool_table_pocket_past(&link->def->table, link->dc, link->now[k].pos) != POOL_POCKET_NONE)
+			++strays;
+		else
+			loose_now += link->cluster_of[k] == c && link->loose[k];
+	}
+	const int rest = gathered - strays;
+	const int need = cuts + strays + (rest == 0 ? 0 : cl->quiet ? 1 : (loose_now > 0) + (rest > loose_now));
+	if (!has_room(link, need))
+		return POOL_OK;
+	cl->in_step = 0; // the step ends as planned: its balls leave it with its end's velocities
+	const pool_result ra = absorb(link, c, t);
+	if (ra)
+		return ra;
 	const pool_result rp = pocket_strays(link, c, t);
 	if (rp)
 		return rp;
@@ -532,25 +788,27 @@ pool_result pool_link_step_event(pool_link *link, int i, double t) {
 			return POOL_OK;
 		}
 	}
-	for (int k = 0; k < m; ++k)
+	for (int k = 0; k < m; ++k) {
 		step_end_state(link, idx[k], t, &s[k]);
-	for (int k = 0; k < m; ++k)
-		link->accel[k] = s[k].vel;
-	pool_link_step_stats st;
-	pool_result r = pool_link_step(link->def, s, m, cl->dt, &link->ws, link->alloc, &st);
-	if (r == POOL_OK && cl->dt > POOL_LINK_STEP_TIME && st.residual > POOL_LINK_LONG_STEP_RESIDUAL) {
-		// A long step moves the balls by its velocity error times dt: one the solve left less
-		// accurate is taken again at POOL_LINK_STEP_TIME.
-		link->stats.pivots += st.pivots;
-		cl->dt = POOL_LINK_STEP_TIME;
-		for (int k = 0; k < m; ++k)
-			step_end_state(link, idx[k], t, &s[k]);
-		r = pool_link_step(link->def, s, m, cl->dt, &link->ws, link->alloc, &st);
+		drop_tail(link, idx[k]);
+		set_v0(link, idx[k], &s[k]);
 	}
-	if (r) {
-		link->failed_step = st;
-		link->failed_size = m;
-		return r;
+	pool_link_step_stats st;
+	for (int round = 0;; ++round) {
+		const pool_result r = solve(link, cl, idx, s, m, &st);
+		if (r)
+			return r;
+		// Touching balls the step's velocities drive into (the contact rule would have them
+		// collide at this very instant) are pressed by the cluster: they join it and the step
+		// is solved again with them. Left out, each would be hit at once, and that hit would cut
+		// the step after no time, restoring the velocities under which nothing closes: the
+		// cluster would step, be cut and step again at one instant for ever.
+		if (round == link->n || !drive_in(link, c, s, m, t))
+			break;
+		link->stats.pivots += st.pivots;
+		m = members(link, c, idx);
+		for (int k = 0; k < m; ++k)
+			state_at(link, idx[k], t, &s[k]);
 	}
 	pool_link_stats *total = &link->stats;
 	total->steps++;
@@ -584,6 +842,10 @@ pool_result pool_link_step_event(pool_link *link, int i, double t) {
 	const int sleeps = still && leaving == 0;
 	cl->t_next = sleeps ? INFINITY : t + this_dt;
 	cl->dt = next_step_length(this_dt, st.max_contact_accel);
+	// The step in progress: from t, planned for this_dt (a sleeping heap has none: it is at rest).
+	cl->in_step = !sleeps;
+	cl->t_start = t;
+	cl->step_dt = this_dt;
 	for (int k = 0; k < m; ++k) {
 		if (sleeps) {
 			s[k].vel = s[k].omega = pool_v3(0.0, 0.0, 0.0);
@@ -648,7 +910,7 @@ static pool_result touched(pool_link *link, int i, double t) {
 	// events pass it on, with restitution, where the inelastic step would absorb the bounce; if
 	// the balls press one another again, the trigger links them again. (pool_sim_step reserved
 	// the history for the link_end.)
-	if (hit_inside(link, c, t)) {
+	if (hit_inside(link, c, t) && has_room(link, 1)) {
 		int *idx = link->members;
 		const int m = members(link, c, idx);
 		link->clusters[c].active = 0;

@@ -1,7 +1,9 @@
 // LINK, persistent contact (docs/physics.md "LINK", docs/library.md "Persistent contact"), as a
 // solver with one owner: this module keeps every piece of its state (the clusters, each ball's
 // cluster, the collision streaks of the trigger, the steps' tails, the LCP workspace, the
-// statistics) and the world calls it in three places:
+// statistics) and the world calls it in four places:
+//   pool_link_cut          before an event from outside acts on balls it holds: their clusters'
+//                          steps end there, at the length they actually lasted;
 //   pool_link_take_pressed a contact the impulses cannot hold (pressed, no impulse): a cluster forms;
 //   pool_link_after_event  after an event was applied and recorded: the trigger, adopting a hitter,
 //                          a cluster touched or left by the event;
@@ -40,6 +42,8 @@ typedef struct pool_link_world {
 	pool_result (*record)(void *ctx, double t, pool_event_type type, pool_pocket pocket, const int *balls, int m);
 	/// Room for `events` more events with `states` more states (POOL_ERR_OUT_OF_MEMORY: none).
 	pool_result (*reserve)(void *ctx, int events, int states);
+	/// Events that may still be recorded before max_events.
+	int (*room)(void *ctx);
 } pool_link_world;
 
 /// Partners a ball remembers for the LINK trigger: a collision streak per recent partner.
@@ -55,13 +59,20 @@ typedef struct pool_contact_streak {
 } pool_contact_streak;
 
 /// A cluster: its balls are those whose cluster_of is its index; they share one step event.
+/// A step is an object: it starts at t_start from the velocities v0 its balls had then, is
+/// planned to last step_dt (its end, t_next), and lasts what it actually lasts: an event from
+/// outside can end it earlier, and whatever it changed (the gravity kick, the contact impulses,
+/// the cloth wrenches) then follows from the time it lasted (pool_link_cut).
 typedef struct pool_cluster {
-	int active;    ///< in use
-	double t_next; ///< s, the cluster's next step (INFINITY while it sleeps)
-	double dt;     ///< s, the length of its current step (POOL_LINK_STEP_TIME ... POOL_LINK_STEP_MAX)
-	int steps;     ///< steps taken
-	int quiet;     ///< the last step found every ball loose: the cluster dissolves at its next
-	               ///< step instead of solving again
+	int active;     ///< in use
+	double t_next;  ///< s, the cluster's next step (INFINITY while it sleeps)
+	double dt;      ///< s, the length of its next step (POOL_LINK_STEP_TIME ... POOL_LINK_STEP_MAX)
+	int in_step;    ///< a step is in progress (solved at t_start, to end at t_next)
+	double t_start; ///< s, the step's start
+	double step_dt; ///< s, its planned length
+	int steps;      ///< steps taken
+	int quiet;      ///< the last step found every ball loose: the cluster dissolves at its next
+	                ///< step instead of solving again
 } pool_cluster;
 
 /// LINK's whole state, owned by it (the world holds it and passes it to every call).
@@ -76,12 +87,15 @@ typedef struct pool_link {
 	int *loose;                ///< the cluster's last step found nothing pressing it: it leaves
 	                           ///< at the next step
 	double *tail;              ///< 6 per ball: velocity (v, w) at the step's end less the
-	                           ///< segment's mean (link_step.h ball_tail); zero after an interruption
+	                           ///< segment's mean (link_step.h ball_tail); zero outside a step
+	double *v0;                ///< 6 per ball: velocity (v, w) at the step's start
 	pool_contact_streak *streak; ///< POOL_LINK_PARTNERS per ball: recent collisions, for the trigger
 	pool_cluster *clusters;    ///< at most one per ball
 	// Scratch of a step (cap of each):
 	pool_ball_state *states;
+	pool_ball_state *now;      ///< every ball's state at a gathering's instant
 	int *members;
+	int *mark;                 ///< a gathering's balls
 	int *group;
 	pool_ball_state *leaving;  ///< the states loose balls would leave with
 	pool_vec3 *accel;          ///< each ball's acceleration over the step
@@ -89,6 +103,8 @@ typedef struct pool_link {
 	pool_link_stats stats;     ///< this shot's
 	pool_link_step_stats failed_step; ///< the last failed solve (pool_link_failure)
 	int failed_size;           ///< its cluster's balls
+	int starved;               ///< an event LINK needed found no room under max_events: it did
+	                           ///< nothing, and the shot stops (POOL_STOP_MAX_EVENTS)
 } pool_link;
 
 /// Binds LINK to its simulation's def (kept by address: the world's), allocator and world.
@@ -113,9 +129,19 @@ static inline int pool_link_cluster_of(const pool_link *link, int i) { return li
 /// s, the next step of ball i's cluster (i linked).
 double pool_link_next_step(const pool_link *link, int i);
 
+/// Before an event from outside acts on the balls inv[0..m) at t: the step in progress of each
+/// of their clusters ends at t, its velocities those of the time it lasted (pool_cluster), and
+/// a link_step records the cluster's states at the cut; the cluster steps again at t.
+pool_result pool_link_cut(pool_link *link, const int *inv, int m, double t);
+
+/// 1 when LINK found no room for an event it needed under max_events (it then did nothing):
+/// the shot stops there.
+static inline int pool_link_starved(const pool_link *link) { return link->starved; }
+
 /// 1 when two touching balls s[0..2) (closed-form states at the contact) are pressed together:
-/// their normal approach acceleration, the difference of their accelerations along the normal
-/// less the curvature of their relative path (|v_t|^2 / 2R parts them), is positive.
+/// their normal approach acceleration, the difference of their free accelerations (a linked
+/// ball's: as if released, gravity above the cloth) along the normal less the curvature of
+/// their relative path (|v_t|^2 / 2R parts them), is positive.
 int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s);
 
 /// An event of the balls inv[0..m) (evolved to t, in s[0..m)) found them touching and pressed,

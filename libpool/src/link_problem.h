@@ -24,6 +24,7 @@ typedef struct link_contact {
 	link_kind kind;
 	int a, b;         ///< ball indices; b = -1 for the cloth and the cushions
 	int rail;         ///< pool_rail of a cushion contact, else POOL_RAIL_NONE
+	int piece;        ///< which piece of the rail's nose (geometry.h), else 0
 	pool_vec3 n;      ///< unit normal, towards ball a
 	pool_vec3 ra, rb; ///< from each centre to the contact point
 	double gap;       ///< m, distance between the surfaces (< 0: penetration)

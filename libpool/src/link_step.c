@@ -49,9 +49,11 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "assert.h"
 #include "geometry.h"
 #include "lemke.h"
 #include "link_problem.h"
+#include "table_shape.h"
 #include "vec3.h"
 
 /// Fraction of an existing penetration the step removes (Baumgarte): a fifth per step spreads a
@@ -94,6 +96,7 @@ void pool_link_workspace_free(pool_link_workspace *ws, const pool_allocator *all
 
 typedef struct link_scene {
 	const pool_sim_def *def;
+	const pool_table_shape *shape; ///< pockets "jaws": the parts of the nose curve, else NULL
 	const pool_ball_state *s;
 	int n;
 	int planar;
@@ -125,6 +128,7 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				c->a = a;
 				c->b = -1;
 				c->rail = POOL_RAIL_NONE;
+				c->piece = 0;
 				c->n = pool_v3(0.0, 0.0, 1.0);
 				c->ra = pool_v3(0.0, 0.0, -R);
 				c->rb = pool_v3(0.0, 0.0, 0.0);
@@ -133,29 +137,61 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 			}
 			++count;
 		}
-		for (int rail = POOL_RAIL_SOUTH; rail <= POOL_RAIL_EAST; ++rail) {
-			const int along_x = pool_rail_along_x((pool_rail)rail);
-			const double across = (along_x ? pa.y : pa.x) - pool_rail_nose_line(table, (pool_rail)rail);
-			const double up = pa.z - table->cushion_height;
-			const double gap = sqrt(across * across + up * up) - R;
-			if (!(gap < sc->reach + POOL_LINK_MARGIN))
+		// Pockets "jaws": each part of the nose curve whose span the centre faces (a facing, a
+		// jaw, a nose segment), its id for the warm start past the four rails'.
+		for (int k = 0; sc->shape && k < sc->shape->n_parts; ++k) {
+			if (!pool_shape_in_span(sc->shape, k, pa))
 				continue;
-			// Inside a pocket mouth there is no nose: the world pockets a ball crossing there.
-			if (pool_pocket_at(table, (pool_rail)rail, along_x ? pa.x : pa.y) != POOL_POCKET_NONE)
+			const pool_vec3 q = pool_shape_nearest(sc->shape, k, pa);
+			const double gap = pool_v3_len(pool_v3_sub(pa, q)) - R;
+			if (!(gap < sc->reach + POOL_LINK_MARGIN))
 				continue;
 			if (out) {
 				link_contact *c = &out[count];
 				c->kind = LINK_CUSHION;
 				c->a = a;
 				c->b = -1;
-				c->rail = rail;
-				c->n = pool_cushion_normal(table, pa, (pool_rail)rail);
+				c->rail = 4 + k;
+				c->piece = 0;
+				c->n = pool_shape_normal(sc->shape, k, pa);
+				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12); // a unit normal
 				c->ra = pool_v3_scale(c->n, -R);
 				c->rb = pool_v3(0.0, 0.0, 0.0);
 				c->gap = gap;
 				c->mu = p->mu_cushion;
 			}
 			++count;
+		}
+		for (int rail = POOL_RAIL_SOUTH; !sc->shape && rail <= POOL_RAIL_EAST; ++rail) {
+			// The nose: its line, ending at the pocket mouths (over a mouth there is no nose but its
+			// ends: the world pockets a ball crossing the contact line there). A contact per piece of
+			// the nose, at its point nearest the ball: a ball over a mouth narrower than 2R touches
+			// the ends on both sides, and each piece is convex, so the step's plane through that
+			// point (the contact's normal) keeps the ball out of all of it.
+			pool_vec3 nose[2];
+			const int pieces = pool_nose_pieces_nearest(table, (pool_rail)rail, pa, nose);
+			for (int k = 0; k < pieces; ++k) {
+				const pool_vec3 d = pool_v3_sub(pa, nose[k]);
+				const double dist = pool_v3_len(d);
+				const double gap = dist - R;
+				if (!(gap < sc->reach + POOL_LINK_MARGIN) || !(dist > 0.0))
+					continue;
+				if (out) {
+					link_contact *c = &out[count];
+					c->kind = LINK_CUSHION;
+					c->a = a;
+					c->b = -1;
+					c->rail = rail;
+					c->piece = k;
+					c->n = pool_v3_scale(d, 1.0 / dist);
+					POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12); // a unit normal
+					c->ra = pool_v3_scale(c->n, -R);
+					c->rb = pool_v3(0.0, 0.0, 0.0);
+					c->gap = gap;
+					c->mu = p->mu_cushion;
+				}
+				++count;
+			}
 		}
 		for (int b = a + 1; b < sc->n; ++b) {
 			const pool_vec3 d = pool_v3_sub(pa, centre(sc, b));
@@ -170,7 +206,9 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				c->a = a;
 				c->b = b;
 				c->rail = POOL_RAIL_NONE;
+				c->piece = 0;
 				c->n = pool_v3_scale(d, 1.0 / dist);
+				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12);
 				c->ra = pool_v3_scale(c->n, -R);
 				c->rb = pool_v3_scale(c->n, R);
 				c->gap = gap;
@@ -575,7 +613,8 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 		if (!finite_state(&s[k]))
 			return POOL_ERR_NON_FINITE;
 
-	link_scene sc = {def, s, n, !def->airborne, 0.0};
+	const pool_table_shape *shape = ws->shape && ws->shape->table.pockets == POOL_POCKETS_JAWS ? ws->shape : NULL;
+	link_scene sc = {def, shape, s, n, !def->airborne, 0.0};
 	sc.reach = speed_bound(&sc, dt) * dt;
 	const int nc = find_contacts(&sc, NULL);
 	if (nc > POOL_LINK_CONTACTS_MAX)

@@ -65,6 +65,9 @@ typedef struct pool_link_workspace {
 	size_t bytes;
 	size_t matrix_nonzeros; ///< the LCP matrix's room: the most nonzeros a step has needed
 	pool_link_bases bases; ///< warm starts: each contact's basis in the last step that solved it
+	/// The table's nose curve (pockets "jaws": the cushion contacts are its parts); NULL: the
+	/// rails' four nose lines with gaps at the mouths.
+	const struct pool_table_shape *shape;
 	/// After a successful step, per ball of the step (n of them, valid until the next step):
 	double *ball_push; ///< m/s, its largest normal impulse / ball mass at a ball-ball or
 	                   ///< ball-cushion contact over the step (0: nothing presses it)

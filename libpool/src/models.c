@@ -1,4 +1,5 @@
-// Names of the optional models (docs/interfaces.md, scenario "models") and their validation.
+// The models of a simulation (docs/physics.md "Models", docs/interfaces.md "models"): their names,
+// the named model sets ("default": the measured laws; "thesis": the 2012 work's) and validation.
 #include "models.h"
 
 #include <string.h>
@@ -30,6 +31,33 @@ const char *pool_ball_friction_model_name(pool_ball_friction_model model) {
 }
 const char *pool_squirt_model_name(pool_squirt_model model) {
 	return name_of(squirt_names, COUNT(squirt_names), (int)model);
+}
+
+pool_models pool_default_models(void) {
+	// The measured laws (docs/physics.md "Models"): Mathavan 2010's cushion rebounds 0.90-0.95 of
+	// a rolling ball's speed as measured tables do, Alciatore's throw falls with speed as Marlow
+	// measured it (a break's rack opens: docs/measurements.md "Breaks").
+	return (pool_models){POOL_CUSHION_MATHAVAN2010, POOL_BALL_FRICTION_ALCIATORE, POOL_SQUIRT_NONE};
+}
+
+pool_models pool_thesis_models(void) {
+	return (pool_models){POOL_CUSHION_PETIT, POOL_BALL_FRICTION_CONSTANT, POOL_SQUIRT_NONE};
+}
+
+static const char *const preset_names[] = {"default", "thesis"};
+
+const char *pool_models_preset_name(int i) {
+	return i >= 0 && i < COUNT(preset_names) ? preset_names[i] : NULL;
+}
+
+pool_result pool_models_preset(const char *name, pool_models *models) {
+	if (!name || !models)
+		return POOL_ERR_INVALID_ARGUMENT;
+	switch (value_of(preset_names, COUNT(preset_names), name)) {
+	case 0: *models = pool_default_models(); return POOL_OK;
+	case 1: *models = pool_thesis_models(); return POOL_OK;
+	default: return POOL_ERR_UNKNOWN_PRESET;
+	}
 }
 
 int pool_cushion_model_from_name(const char *name) {

@@ -1,4 +1,4 @@
-// The optional models of a simulation (pool_models, docs/physics.md "Optional models"): validation
+// The optional models of a simulation (pool_models, docs/physics.md "Models"): validation
 // of a def's choice. Each model lives with the law it replaces (cushion.c, ball_ball.c,
 // strike.c).
 #ifndef POOL_MODELS_H

@@ -6,6 +6,7 @@
 
 #include "contact.h"
 #include "geometry.h"
+#include "pool/quartic.h"
 #include "pool/sim.h"
 #include "vec3.h"
 
@@ -42,7 +43,7 @@ static double triangle_dist2(pool_vec3 a, pool_vec3 b, pool_vec3 c) {
 // curve inside the triangle of its control points P0, P0 + dv T / 2, P0 + dv T + da T^2 (in 3D:
 // airborne balls too); if that triangle stays farther than 2R from the origin, the balls
 // cannot touch. The margin 1e-9 (relative) covers the rounding of the control points.
-static int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
+static inline int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
 	if (!isfinite(T))
 		return 1;
 	if (pool_predict_pair_out_of_reach(dp, dv, da, R, T)) // cheaper still, enough for most pairs
@@ -135,6 +136,28 @@ double pool_predict_cushion(const pool_table_def *table, double R, const pool_ba
 	return best;
 }
 
+// The first instant in (after, window] at which a flying ball's distance to a nose line
+// (relative path dp + dv tau + da tau^2 in the rail's normal plane) falls to R while closing,
+// with the ball's coordinate along the rail (a0 + va tau + aa tau^2 / 2) outside the pocket
+// mouths: a contact with the nose found after one that fell over a mouth (a ball rising through
+// the line over a mouth comes down onto the nose further along); INFINITY when none.
+static double later_nose_contact(const pool_table_def *table, pool_rail rail, pool_vec3 dp, pool_vec3 dv, pool_vec3 da,
+                                 double R, double a0, double va, double aa, double after, double window) {
+	const double c[5] = {pool_v3_dot(da, da), 2.0 * pool_v3_dot(da, dv), pool_v3_dot(dv, dv) + 2.0 * pool_v3_dot(da, dp),
+	                     2.0 * pool_v3_dot(dv, dp), pool_v3_dot(dp, dp) - R * R};
+	double roots[4];
+	const int n = pool_quartic_real_roots(c, roots);
+	for (int k = 0; k < n; ++k) {
+		const double r = roots[k];
+		if (!(r > after && r <= window))
+			continue;
+		const double slope = ((4.0 * c[0] * r + 3.0 * c[1]) * r + 2.0 * c[2]) * r + c[3];
+		if (slope < 0.0 && pool_pocket_at(table, rail, a0 + r * va + 0.5 * aa * r * r) == POOL_POCKET_NONE)
+			return r;
+	}
+	return INFINITY;
+}
+
 double pool_predict_flight(const pool_table_def *table, double R, const pool_ball_state *s, pool_vec3 acc, double T,
                            pool_event_type *kind, pool_rail *rail, pool_pocket *pocket) {
 	const double dc = pool_table_contact_distance(table, R), h = table->cushion_height;
@@ -163,18 +186,50 @@ double pool_predict_flight(const pool_table_def *table, double R, const pool_bal
 		const double n = pool_rail_nose_line(table, rr);
 		const pool_vec3 dp = pool_v3(side * (n - q0), s->pos.z - h, 0.0);
 		const pool_vec3 dv = pool_v3(-side * vq, s->vel.z, 0.0), da = pool_v3(-0.5 * side * aq, 0.5 * acc.z, 0.0);
-		double t = pool_predict_ball_ball(dp, dv, da, 0.5 * R, window);
-		if (t <= window && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) == POOL_POCKET_NONE) {
+		// A ball over a mouth already within R of the line (no nose there): the contact rule, made
+		// for touching bodies, does not apply to that depth; where it comes out of the mouth into
+		// the nose is a root of the distance itself.
+		const int inside = pool_v3_len(dp) < R - POOL_TOUCH_TOLERANCE && pool_pocket_at(table, rr, a0) != POOL_POCKET_NONE;
+		double t = inside ? later_nose_contact(table, rr, dp, dv, da, R, a0, va, aa, 0.0, window)
+		                  : pool_predict_ball_ball(dp, dv, da, 0.5 * R, window);
+		if (t <= window && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) != POOL_POCKET_NONE)
+			t = later_nose_contact(table, rr, dp, dv, da, R, a0, va, aa, t, window);
+		int nose = t <= window && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) == POOL_POCKET_NONE;
+		if (nose) {
 			best = t;
 			*kind = POOL_EVENT_BALL_CUSHION;
 			*rail = rr;
 			*pocket = POOL_POCKET_NONE;
-			continue;
+			// A ball coming down onto the nose from above touches it with its centre already past
+			// the table's edge: the edge, crossed first, still ends the flight (below).
 		}
+		// The nose ends at the mouths' edges: over a mouth, a ball within R of the nose's line
+		// meets its end (a point), or it would come out of the mouth inside the cushion.
+		// (Ends are on the line: a ball that cannot come within R of the line in the window,
+		// most flights, meets none of them; nor one that cannot reach the end itself.)
+		double ends[4];
+		const double w_ends = best < T ? best : T;
+		const double reach = (pool_v3_len(s->vel) + 0.5 * pool_v3_len(acc) * w_ends) * w_ends;
+		const int n_ends = pool_v3_len(dp) - R > reach ? 0 : pool_nose_ends(table, rr, ends);
+		for (int k = 0; k < n_ends; ++k) {
+			const pool_vec3 end = along_x ? pool_v3(ends[k], n, h) : pool_v3(n, ends[k], h);
+			const double w = fmin(best, T);
+			if (pool_v3_len(pool_v3_sub(s->pos, end)) - R > reach)
+				continue;
+			t = pool_predict_ball_ball(pool_v3_sub(s->pos, end), s->vel, pool_v3_scale(acc, 0.5), 0.5 * R, w);
+			if (t <= w && pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t) != POOL_POCKET_NONE) {
+				best = t;
+				nose = 1;
+				*kind = POOL_EVENT_BALL_CUSHION;
+				*rail = rr;
+				*pocket = POOL_POCKET_NONE;
+			}
+		}
+		const double before_nose = fmin(best, T);
 		// Over a pocket mouth there is no nose: crossing the contact line below the nose height
 		// is a pocket; above it the ball flies on.
-		t = line_contact(q0, vq, aq, pool_rail_contact_line(table, dc, rr), side, window);
-		if (t <= window) {
+		t = line_contact(q0, vq, aq, pool_rail_contact_line(table, dc, rr), side, before_nose);
+		if (t <= before_nose) {
 			const pool_pocket pk = pool_pocket_at(table, rr, a0 + t * va + 0.5 * aa * t * t);
 			if (pk != POOL_POCKET_NONE && s->pos.z + t * s->vel.z + 0.5 * acc.z * t * t < h) {
 				best = t;
@@ -186,8 +241,8 @@ double pool_predict_flight(const pool_table_def *table, double R, const pool_bal
 		}
 		// Crossing the table's edge (the nose line's vertical plane) without touching the nose:
 		// it leaves the table.
-		t = line_contact(q0, vq, aq, n, side, window);
-		if (t <= window) {
+		t = line_contact(q0, vq, aq, n, side, before_nose);
+		if (t <= before_nose && (!nose || t < best)) {
 			best = t;
 			*kind = POOL_EVENT_OFF_TABLE;
 			*rail = rr;
@@ -201,7 +256,8 @@ double pool_predict_flight(const pool_table_def *table, double R, const pool_bal
 		for (int r = 0; r < 4; ++r) {
 			const pool_rail rr = (pool_rail)r;
 			const double q = pool_rail_along_x(rr) ? at.y : at.x;
-			if (pool_rail_side(rr) * (pool_rail_contact_line(table, dc, rr) - q) < -POOL_TOUCH_TOLERANCE) {
+			// (past it by more than a touching ball may be: its tolerance and its rounding)
+			if (pool_rail_side(rr) * (pool_rail_contact_line(table, dc, rr) - q) < -2.0 * POOL_TOUCH_TOLERANCE) {
 				*pocket = pool_pocket_at(table, rr, pool_rail_along_x(rr) ? at.x : at.y);
 				*kind = *pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_OFF_TABLE;
 				*rail = rr;

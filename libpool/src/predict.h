@@ -10,6 +10,7 @@
 #include "pool/sim.h"
 #include "pool/event.h"
 #include "pool/table.h"
+#include "table_shape.h"
 
 /// Earliest tau in [0, T] at which two balls of radius R come into contact while approaching,
 /// with relative motion p(tau) = dp + dv tau + da tau^2 (da = half the difference of the
@@ -45,5 +46,34 @@ double pool_predict_cushion(const pool_table_def *table, double R, const pool_ba
 /// *pocket describe it; INFINITY when none within T.
 double pool_predict_flight(const pool_table_def *table, double R, const pool_ball_state *s, pool_vec3 acc, double T,
                            pool_event_type *kind, pool_rail *rail, pool_pocket *pocket);
+
+/// Where a cushion, pocket or off-table event happens: the rail, the pocket (of a pocket event,
+/// or of the facing or jaw hit) and the part of the nose curve (an index into the shape's parts,
+/// -1 for the thesis model's lines and for pocket and off-table events).
+typedef struct pool_site {
+	pool_rail rail;
+	pool_pocket pocket;
+	int part;
+} pool_site;
+
+/// A ball on the cloth against the table's cushions and pockets, whatever its pocket model:
+/// earliest tau in [0, T], *kind POOL_EVENT_BALL_CUSHION or POOL_EVENT_POCKET, *site where.
+double pool_predict_cushion_shape(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
+                                  pool_event_type *kind, pool_site *site);
+
+/// An airborne ball's own next event, whatever the pocket model (pool_predict_flight's kinds).
+double pool_predict_flight_shape(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
+                                 pool_event_type *kind, pool_site *site);
+
+/// Pockets "jaws" on the cloth (predict_jaws.c): a crossing of a rail's contact line within a
+/// nose segment's span, a pocket's facing at dc or jaw at its radius + dc, its hole's edge.
+double pool_predict_cushion_jaws(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
+                                 pool_event_type *kind, pool_site *site);
+
+/// Pockets "jaws" in flight: landing (a pocket when over a hole), a part of the nose curve at
+/// distance R (a jaw: degree 8), crossing the nose curve over the cushion (off_table), entering a
+/// hole below the nose height (pocket).
+double pool_predict_flight_jaws(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
+                                pool_event_type *kind, pool_site *site);
 
 #endif

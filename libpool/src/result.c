@@ -17,7 +17,7 @@ const char *pool_result_str(pool_result result) {
 	case POOL_ERR_DUPLICATE_ID: return "duplicate ball id";
 	case POOL_ERR_UNKNOWN_BALL: return "unknown ball id";
 	case POOL_ERR_BAD_STRIKE: return "impossible cue strike";
-	case POOL_ERR_UNKNOWN_PRESET: return "unknown table preset";
+	case POOL_ERR_UNKNOWN_PRESET: return "unknown preset (table or model set)";
 	case POOL_ERR_STATE: return "not allowed in the current state";
 	case POOL_ERR_INTERNAL: return "internal error";
 	}
@@ -60,6 +60,11 @@ const char *pool_rail_name(pool_rail rail) {
 const char *pool_pocket_name(pool_pocket pocket) {
 	static const char *const names[] = {"sw", "se", "nw", "ne", "s", "n"};
 	return (int)pocket >= 0 && (int)pocket < 6 ? names[pocket] : NULL;
+}
+
+const char *pool_cushion_part_name(pool_cushion_part part) {
+	static const char *const names[] = {"nose", "facing", "jaw"};
+	return (int)part >= 0 && (int)part < 3 ? names[part] : NULL;
 }
 
 const char *pool_stop_reason_name(pool_stop_reason reason) {

@@ -5,11 +5,57 @@
 #include "schedule.h"
 
 #include <math.h>
+#ifdef POOL_BROADPHASE_VERIFY
+#include <stdlib.h>
+#include <string.h>
+#endif
 
+#include "assert.h"
+#include "broadphase.h"
+#include "geometry.h"
 #include "predict.h"
 #include "vec3.h"
 
-void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
+// When a linked ball (moving uniformly over its step: its segment has no acceleration) leaves
+// play within `window`: crossing a rail's contact line over a pocket mouth below the nose's
+// height (the step's LCP holds it off the noses, but there is no nose there: it falls in), or,
+// above the noses, the table's edge (thrown off the table); INFINITY when neither. The step's
+// LCP keeps it inside the contact lines elsewhere.
+static double linked_exit(const pool_sim *sim, const pool_ball_state *s, double window, pool_event_type *kind,
+                          pool_rail *rail, pool_pocket *pocket) {
+	const pool_table_def *table = &sim->def.table;
+	double best = INFINITY;
+	for (int r = POOL_RAIL_SOUTH; r <= POOL_RAIL_EAST; ++r) {
+		const pool_rail rr = (pool_rail)r;
+		const int along_x = pool_rail_along_x(rr);
+		const double side = pool_rail_side(rr);
+		const double q0 = along_x ? s->pos.y : s->pos.x, vq = along_x ? s->vel.y : s->vel.x;
+		const double a0 = along_x ? s->pos.x : s->pos.y, va = along_x ? s->vel.x : s->vel.y;
+		if (!(side * vq > 0.0))
+			continue; // not moving out across this rail
+		// The contact line, over a mouth and below the nose: a pocket.
+		const double tl = fmax((pool_rail_contact_line(table, sim->dc, rr) - q0) / vq, 0.0);
+		const pool_pocket pk = pool_pocket_at(table, rr, a0 + va * tl);
+		if (tl < best && tl <= window && pk != POOL_POCKET_NONE && s->pos.z + s->vel.z * tl < table->cushion_height) {
+			best = tl;
+			*kind = POOL_EVENT_POCKET;
+			*rail = rr;
+			*pocket = pk;
+		}
+		// The table's edge, the nose line's plane: off the table.
+		const double te = fmax((pool_rail_nose_line(table, rr) - q0) / vq, 0.0);
+		if (te < best && te <= window) {
+			best = te;
+			*kind = POOL_EVENT_OFF_TABLE;
+			*rail = rr;
+			*pocket = POOL_POCKET_NONE;
+		}
+	}
+	return best;
+}
+
+// Starts body i's segment and finds its own next event (pool_schedule_begin_segment).
+static void begin_own(pool_sim *sim, int i, const pool_ball_state *s, double t) {
 	const pool_params *p = &sim->def.params;
 	pool_body *b = &sim->body[i];
 	sim->cur[i] = *s;
@@ -20,107 +66,174 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	b->own_kind = POOL_EVENT_SPIN_STOP;
 	b->own_rail = POOL_RAIL_NONE;
 	b->own_pocket = POOL_POCKET_NONE;
+	b->own_part = -1;
 	if (!b->active)
 		return;
+	const pool_table_shape *shape = &sim->shape;
+	pool_event_type kind;
+	pool_site site;
 	if (s->motion == POOL_MOTION_LINKED) {
-		// The cluster's step, or a pocket first: the step's LCP holds a linked ball off the
-		// rails except inside a pocket mouth, where it crosses the contact line and falls.
+		// The cluster's step, or leaving play first: the step's LCP holds a linked ball off the
+		// cushions, but not over a hole (pockets "jaws") or past a mouth's contact line and off the
+		// table's edge (the thesis model's lines: linked_exit).
 		b->own_time = pool_link_next_step(&sim->link, i);
 		b->own_kind = POOL_EVENT_LINK_STEP;
-		pool_rail rail;
-		pool_pocket pocket;
 		const double window = fmin(b->own_time, sim->def.max_time) - t;
 		if (!(window > 0.0))
 			return;
-		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &rail, &pocket);
-		if (tc < window && pocket != POOL_POCKET_NONE) {
+		if (shape->table.pockets == POOL_POCKETS_MOUTH_LINES) {
+			kind = POOL_EVENT_POCKET;
+			site.rail = POOL_RAIL_NONE;
+			site.pocket = POOL_POCKET_NONE;
+			const double tc = linked_exit(sim, s, window, &kind, &site.rail, &site.pocket);
+			if (tc < window) {
+				b->own_time = t + tc;
+				b->own_kind = kind;
+				b->own_rail = site.rail;
+				b->own_pocket = site.pocket;
+			}
+			return;
+		}
+		const double tc = pool_predict_cushion_shape(shape, s, b->seg.acc, window, &kind, &site);
+		if (tc < window && kind == POOL_EVENT_POCKET) {
 			b->own_time = t + tc;
 			b->own_kind = POOL_EVENT_POCKET;
-			b->own_rail = rail;
-			b->own_pocket = pocket;
+			b->own_rail = site.rail;
+			b->own_pocket = site.pocket;
 		}
 		return;
 	}
 	if (s->motion == POOL_MOTION_AIRBORNE) {
 		// In flight: landing, a nose, a pocket or the table's edge; nothing changes by itself.
 		const double window = fmax(sim->def.max_time - t, 0.0);
-		const double dt = pool_predict_flight(&sim->def.table, p->ball_radius, s, b->seg.acc, window, &b->own_kind,
-		                                      &b->own_rail, &b->own_pocket);
-		b->own_time = t + dt;
+		const double dt = pool_predict_flight_shape(shape, s, b->seg.acc, window, &b->own_kind, &site);
+		// Gravity ends every flight (params.g > 0), so nothing within the window means the
+		// flight's next event lies after max_time, not that none comes: the shot then stops at
+		// max_time (POOL_STOP_MAX_TIME), never "at rest" with a ball in the air.
+		b->own_time = isfinite(dt) ? t + dt : pool_schedule_beyond(sim);
+		b->own_rail = site.rail;
+		b->own_pocket = site.pocket;
+		b->own_part = site.part;
 		return;
 	}
 	if (!b->seg.model->on_cloth)
 		return;
-	pool_event_type kind;
 	double dt = pool_segment_next_change(&b->seg, &kind);
 	if (b->seg.model->translating) {
-		pool_rail rail;
-		pool_pocket pocket;
-		const double tc = pool_predict_cushion(&sim->def.table, p->ball_radius, s, b->seg.acc, dt, &rail, &pocket);
+		pool_event_type contact;
+		const double tc = pool_predict_cushion_shape(shape, s, b->seg.acc, dt, &contact, &site);
 		// A state change at the same instant goes first (its kind orders first).
 		if (tc < dt) {
 			dt = tc;
-			kind = pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
-			b->own_rail = rail;
-			b->own_pocket = pocket;
+			kind = contact;
+			b->own_rail = site.rail;
+			b->own_pocket = site.pocket;
+			b->own_part = site.part;
 		}
 	}
 	b->own_time = t + dt;
 	b->own_kind = kind;
 }
 
+void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
+	begin_own(sim, i, s, t);
+	// The broadphase files the segment's reach up to its own next event: no pair search looks
+	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
+	// Before the shot's first prediction (balls being added) there is nothing to file it in yet.
+	const pool_body *b = &sim->body[i];
+	if (sim->broad.on && sim->predicted)
+		pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, t, fmin(b->own_time, sim->def.max_time));
+}
+
 // The earlier of two event times (never NaN): fmin is a library call, here in the hottest loop.
 static inline double earlier(double a, double b) { return b < a ? b : a; }
 
+// The next body to look at after j in a contact search (-1: none): every body in index order,
+// or the broadphase's candidates, also in index order.
+static inline int next_body(pool_sim *sim, int grid, int j) {
+	if (grid)
+		return pool_broadphase_next_near(&sim->broad, j);
+	return j + 1 < sim->n ? j + 1 : -1;
+}
+
+// Body i's earliest contact at `now` with another body, if it comes before *best (its own
+// event): *best becomes it, and the other body is returned (-1: none). grid: only the
+// broadphase's candidates, in index order; else every body. The same pairs in the same order
+// either way: the broadphase only leaves out bodies that cannot come within reach over the
+// window (broadphase.h).
+static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, pool_event_key *best) {
+	const pool_params *p = &sim->def.params;
+	const pool_body *bi = &sim->body[i];
+	int partner = -1;
+	// Both paths as polynomials in (t - now), from the segments' own polynomial.
+	pool_vec3 pi, vi;
+	pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
+	const pool_vec3 ai = bi->seg.acc;
+	const int mi = bi->seg.model->translating;
+	const double horizon_i = fmin(bi->own_time, sim->def.max_time);
+	const int cluster_i = pool_link_cluster_of(&sim->link, i);
+	if (grid)
+		pool_broadphase_query(&sim->broad, i, &bi->seg, now, horizon_i);
+	for (int j = next_body(sim, grid, -1); j >= 0; j = next_body(sim, grid, j)) {
+		const pool_body *bj = &sim->body[j];
+		if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
+			continue;
+		// Contacts inside a cluster are its LCP's (link.c), not events.
+		if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
+			continue;
+		// A contact after the best event so far cannot be the earliest: shrink the window.
+		const double T = earlier(earlier(horizon_i, bj->own_time), best->time) - now;
+		if (!(T >= 0.0))
+			continue;
+		pool_vec3 pj, vj;
+		pool_segment_path(&bj->seg, now - bj->seg.t0, &pj, &vj);
+		// Same operand order whichever body predicts, so both get the same time.
+		pool_vec3 dp = pool_v3_sub(pi, pj), dv = pool_v3_sub(vi, vj), da = pool_v3_scale(pool_v3_sub(ai, bj->seg.acc), 0.5);
+		if (j < i) {
+			dp = pool_v3_scale(dp, -1.0);
+			dv = pool_v3_scale(dv, -1.0);
+			da = pool_v3_scale(da, -1.0);
+		}
+		if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
+			continue;
+		const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
+		if (!(tau <= T))
+			continue;
+		const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
+		const pool_event_key k = {now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
+		if (pool_event_key_cmp(&k, best) < 0) {
+			*best = k;
+			partner = j;
+			POOL_ASSERT(bj->active && j != i); // a partner is a ball in play, another one
+		}
+	}
+	return partner;
+}
+
 // Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
 static void repredict(pool_sim *sim, int i, double now) {
-	const pool_params *p = &sim->def.params;
+	POOL_ASSERT(i >= 0 && i < sim->n);
 	pool_body *bi = &sim->body[i];
 	pool_event_key best = {INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
-	bi->partner = -1;
+	int partner = -1;
 	if (bi->active) {
 		best.time = bi->own_time;
 		best.kind = (int)bi->own_kind;
-		// Both paths as polynomials in (t - now), from the segments' own polynomial.
-		pool_vec3 pi, vi;
-		pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
-		const pool_vec3 ai = bi->seg.acc;
-		const int mi = bi->seg.model->translating;
-		const double horizon_i = fmin(bi->own_time, sim->def.max_time);
-		const int cluster_i = pool_link_cluster_of(&sim->link, i);
-		for (int j = 0; j < sim->n; ++j) {
-			const pool_body *bj = &sim->body[j];
-			if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
-				continue;
-			// Contacts inside a cluster are its LCP's (link.c), not events.
-			if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
-				continue;
-			// A contact after the best event so far cannot be the earliest: shrink the window.
-			const double T = earlier(earlier(horizon_i, bj->own_time), best.time) - now;
-			if (!(T >= 0.0))
-				continue;
-			pool_vec3 pj, vj;
-			pool_segment_path(&bj->seg, now - bj->seg.t0, &pj, &vj);
-			// Same operand order whichever body predicts, so both get the same time.
-			pool_vec3 dp = pool_v3_sub(pi, pj), dv = pool_v3_sub(vi, vj), da = pool_v3_scale(pool_v3_sub(ai, bj->seg.acc), 0.5);
-			if (j < i) {
-				dp = pool_v3_scale(dp, -1.0);
-				dv = pool_v3_scale(dv, -1.0);
-				da = pool_v3_scale(da, -1.0);
-			}
-			if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
-				continue;
-			const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
-			if (!(tau <= T))
-				continue;
-			const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
-			const pool_event_key k = {now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
-			if (pool_event_key_cmp(&k, &best) < 0) {
-				best = k;
-				bi->partner = j;
-			}
-		}
+		const int grid = sim->broad.on;
+#ifdef POOL_BROADPHASE_VERIFY
+		// The verification build: the grid's answer must be the all-pairs one, to the bit.
+		pool_event_key all = best;
+		const int all_partner = grid ? earliest_contact(sim, i, now, 0, &all) : -1;
+		partner = earliest_contact(sim, i, now, grid, &best);
+		if (grid && (memcmp(&all, &best, sizeof best) != 0 || all_partner != partner))
+			abort();
+#else
+		partner = earliest_contact(sim, i, now, grid, &best);
+#endif
 	}
+	if (sim->broad.watching && partner != bi->partner)
+		pool_broadphase_repartner(&sim->broad, i, bi->partner, partner);
+	bi->partner = partner;
 	pool_event_queue_update(&sim->queue, i, &best);
 }
 
@@ -133,9 +246,20 @@ void pool_schedule_predict_all(pool_sim *sim) {
 		sim->body[i].partner = -1;
 	}
 	pool_event_queue_build(&sim->queue, sim->n);
+	if (pool_broadphase_begin(&sim->broad, &sim->alloc, &sim->def.table, sim->def.params.ball_radius, sim->n))
+		for (int i = 0; i < sim->n; ++i) {
+			const pool_body *b = &sim->body[i];
+			pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, b->seg.t0,
+			                      fmin(b->own_time, sim->def.max_time));
+		}
 	for (int i = 0; i < sim->n; ++i)
 		repredict(sim, i, sim->time);
 	sim->predicted = 1;
+}
+
+void pool_schedule_set_broadphase(pool_sim *sim, pool_broadphase_mode mode) {
+	pool_broadphase_set_mode(&sim->broad, mode);
+	sim->predicted = 0; // the next run predicts every body again, with this search
 }
 
 void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now) {
@@ -147,18 +271,47 @@ void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now) {
 	pool_schedule_after_event(sim, inv, m, now);
 }
 
+// Adds body x to the sorted list sim->work[0..*count) unless it is there (marked changed).
+static void enlist(pool_sim *sim, int x, int *count) {
+	if (sim->body[x].changed)
+		return;
+	sim->body[x].changed = 1;
+	int at = (*count)++; // insertion: a handful of bodies
+	for (; at > 0 && sim->work[at - 1] > x; --at)
+		sim->work[at] = sim->work[at - 1];
+	sim->work[at] = x;
+}
+
+// The bodies to predict again after an event of inv[0..m), from the partner lists: those bodies
+// and the ones whose pending contact is with one of them, in index order; their count.
+static int watchers(pool_sim *sim, const int *inv, int m) {
+	int count = 0;
+	for (int k = 0; k < m; ++k) {
+		enlist(sim, inv[k], &count);
+		for (int x = pool_broadphase_watcher(&sim->broad, inv[k]); x >= 0; x = pool_broadphase_next_watcher(&sim->broad, x))
+			enlist(sim, x, &count);
+	}
+	for (int k = 0; k < count; ++k)
+		sim->body[sim->work[k]].changed = 0;
+	return count;
+}
+
 void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now) {
 	// The changed bodies and those whose pending contact was with one of them, in index order.
-	for (int k = 0; k < m; ++k)
-		sim->body[inv[k]].changed = 1;
 	int count = 0;
-	for (int x = 0; x < sim->n; ++x) {
-		const int partner = sim->body[x].partner;
-		if (sim->body[x].changed || (partner >= 0 && sim->body[partner].changed))
-			sim->work[count++] = x;
+	if (sim->broad.watching) {
+		count = watchers(sim, inv, m);
+	} else {
+		for (int k = 0; k < m; ++k)
+			sim->body[inv[k]].changed = 1;
+		for (int x = 0; x < sim->n; ++x) {
+			const int partner = sim->body[x].partner;
+			if (sim->body[x].changed || (partner >= 0 && sim->body[partner].changed))
+				sim->work[count++] = x;
+		}
+		for (int k = 0; k < m; ++k)
+			sim->body[inv[k]].changed = 0;
 	}
-	for (int k = 0; k < m; ++k)
-		sim->body[inv[k]].changed = 0;
 	for (int k = 0; k < count; ++k)
 		repredict(sim, sim->work[k], now);
 }

@@ -3,6 +3,8 @@
 #ifndef POOL_SCHEDULE_H
 #define POOL_SCHEDULE_H
 
+#include <math.h>
+
 #include "world.h"
 
 /// Starts body i's new motion segment at time t in state s and predicts its own next event
@@ -19,6 +21,14 @@ void pool_schedule_after_event(pool_sim *sim, const int *inv, int m, double now)
 /// The bodies inv[0..m) keep their segments but their own next events moved (a LINK cluster's
 /// step): predicted again, then as pool_schedule_after_event.
 void pool_schedule_refresh(pool_sim *sim, const int *inv, int m, double now);
+
+/// s, the first instant after max_time: the time of a body's next event when a prediction cut
+/// at max_time found none although one must come (a flight's landing).
+static inline double pool_schedule_beyond(const pool_sim *sim) { return nextafter(sim->def.max_time, INFINITY); }
+
+/// Sets the pair search (broadphase.h) from the next run on: every body is predicted again then.
+/// For tests and benchmarks; the default, POOL_BROADPHASE_AUTO, chooses by ball count.
+void pool_schedule_set_broadphase(pool_sim *sim, pool_broadphase_mode mode);
 
 /// Slot of the earliest pending event (sim->n > 0).
 static inline int pool_schedule_next(const pool_sim *sim) { return pool_event_queue_top(&sim->queue); }

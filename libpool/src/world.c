@@ -17,12 +17,15 @@
 // colliding again and again into a cluster solved as one LCP per step, and max_events bounds
 // every other case. Persistent (pushing, resting) contact: link.h.
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "contact.h"
 #include "error.h"
+#include "geometry.h"
 #include "handlers.h"
+#include "invariants.h"
 #include "memory.h"
 #include "models.h"
 #include "motion.h"
@@ -48,8 +51,12 @@ pool_sim_def pool_default_sim_def(void) {
 	def.airborne = false;
 	def.max_time = 120.0;
 	def.max_events = 100000;
+	def.models = pool_default_models();
 	return def;
 }
+
+/// The highest nose accepted, in ball radii (validate_def says why).
+#define POOL_NOSE_HEIGHT_MAX 1.9
 
 static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 	pool_result r;
@@ -57,10 +64,24 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "def: missing");
 	if ((r = pool_table_def_validate(&def->table, error)) || (r = pool_params_validate(&def->params, error)))
 		return r;
+	// The nose must hold a ball back (docs/physics.md "Frame, units, defaults"). At or below
+	// the ball's centre it pushes a ball pressed into it upwards, up and over the cushion, whose
+	// top libpool does not model; near the ball's top its contact pushes the ball into the cloth
+	// far harder than it holds it back (at 1.9 R, 2.3 times: the normal is 64 degrees from the
+	// horizontal), and the ball wedges between nose and cloth, which rigid contacts resolve
+	// only in the limit (the soak's shots fail from 1.998 R up). Measured tables are 1.2-1.4 R.
+	// Such tables are refused rather than simulated wrongly.
 	const double R = def->params.ball_radius;
-	if (!(def->table.cushion_height < 2.0 * R))
+	if (!(def->table.cushion_height > R))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
-		                      "table.cushion_height: must be < 2 params.ball_radius (%g m)", 2.0 * R);
+		                      "table.cushion_height: must be > params.ball_radius (%g m): a nose at or below the "
+		                      "ball's centre pushes the ball up and over the cushion (docs/physics.md)",
+		                      R);
+	if (!(def->table.cushion_height <= POOL_NOSE_HEIGHT_MAX * R))
+		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
+		                      "table.cushion_height: must be <= %g params.ball_radius (%g m): a nose near the ball's "
+		                      "top wedges the ball against the cloth instead of holding it back (docs/physics.md)",
+		                      POOL_NOSE_HEIGHT_MAX, POOL_NOSE_HEIGHT_MAX * R);
 	if (!(def->table.length > 2.0 * R && def->table.width > 2.0 * R))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "table.width: must be > 2 params.ball_radius");
 	if (isnan(def->max_time) || !(def->max_time > 0.0))
@@ -71,6 +92,11 @@ static pool_result validate_def(const pool_sim_def *def, pool_error *error) {
 	if ((def->allocator.alloc == NULL) != (def->allocator.free == NULL))
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT, "allocator: alloc and free must both be set");
 	if ((r = pool_models_validate(&def->models, error)))
+		return r;
+	// The nose curve can be built for this ball (jaws tangent within their parts, facings that
+	// reach the holes, mouths and throats wider than the ball).
+	pool_table_shape shape;
+	if ((r = pool_table_shape_build(&def->table, R, &shape, error)))
 		return r;
 	return pool_error_ok(error);
 }
@@ -107,9 +133,14 @@ static pool_result link_reserve(void *ctx, int events, int states) {
 	return pool_history_reserve(&sim->history, &sim->alloc, events, states);
 }
 
+static int link_room(void *ctx) {
+	const pool_sim *sim = ctx;
+	return sim->def.max_events - sim->history.n_events;
+}
+
 static void bind_link(pool_sim *sim) {
 	const pool_link_world world = {sim,         link_state_at, link_begin_segment, link_refresh,
-	                               link_changed, link_record,  link_reserve};
+	                               link_changed, link_record,  link_reserve,       link_room};
 	pool_link_init(&sim->link, &sim->def, sim->dc, &sim->alloc, &world);
 }
 
@@ -123,6 +154,7 @@ static void clear(pool_sim *sim) {
 	sim->predicted = 0;
 	sim->started = 0;
 	sim->noop_streak = 0;
+	sim->noop_time = -INFINITY;
 	sim->failed = POOL_OK;
 	sim->last_error.message[0] = '\0';
 	pool_history_clear(&sim->history);
@@ -135,6 +167,8 @@ static void set_def(pool_sim *sim, const pool_sim_def *def) {
 	sim->def.allocator = keep; // buffers stay with the allocator that made them
 	sim->dc = pool_table_contact_distance(&def->table, def->params.ball_radius);
 	bind_link(sim);
+	(void)pool_table_shape_build(&def->table, def->params.ball_radius, &sim->shape, NULL); // validated
+	sim->link.ws.shape = &sim->shape; // LINK's cushion contacts are the nose curve's parts
 }
 
 pool_result pool_sim_create(const pool_sim_def *def, pool_sim **out, pool_error *error) {
@@ -168,6 +202,7 @@ void pool_sim_destroy(pool_sim *sim) {
 	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work};
 	pool_link_free(&sim->link);
 	pool_history_free(&sim->history, &a);
+	pool_broadphase_free(&sim->broad, &a);
 	for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
 		pool_mem_free(&a, arrays[i]);
 	pool_mem_free(&a, sim);
@@ -253,8 +288,18 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		                      idx, R);
 	}
 	const double x = ball->pos.x, y = ball->pos.y;
-	if (x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol)
+	// On the cloth inside the contact lines; with pockets "jaws" also in a mouth or on a shelf,
+	// clear of the facings and jaws and not over a hole (where a ball can come to rest).
+	if ((x < sim->dc - tol || x > L - sim->dc + tol || y < sim->dc - tol || y > W - sim->dc + tol) &&
+	    !(sim->def.table.pockets == POOL_POCKETS_JAWS && pool_shape_on_cloth(&sim->shape, x, y, tol)))
 		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
+	// Above the cloth a ball inside its contact lines can still be inside a cushion's nose (on the
+	// cloth the lines are exactly where it touches one).
+	pool_rail nose_rail;
+	const double nose_gap = pool_table_nose_gap(&sim->def.table, ball->pos, R, &nose_rail);
+	if (ball->pos.z > R + tol && !(nose_gap >= -tol))
+		return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
+		                      pool_rail_name(nose_rail), -nose_gap);
 	for (int j = 0; j < sim->n; ++j) {
 		double d = pool_v3_len(pool_v3_sub(ball->pos, sim->cur[j].pos));
 		if (d < 2.0 * R - tol)
@@ -316,6 +361,29 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 /// Consecutive no-op contacts (grazes) skipped before one is recorded anyway.
 #define NOOP_LIMIT 8
 
+// 1 when the handler changed nothing of the states before[0..count) of the balls inv[0..count)
+// (its results s) but what deriving a state from the same velocities changes (a vertical speed
+// below POOL_APPROACH_EPS dropped on the cloth): no impulse acted.
+static int no_impulse(const pool_sim *sim, const int *inv, const pool_ball_state *s, const pool_ball_state *before,
+                      int count) {
+	if (memcmp(s, before, sizeof s[0] * (size_t)count) == 0)
+		return 1;
+	// (The common case, an impulse, changes a velocity by more than the clean-up of deriving a
+	// state does: vertical speeds below POOL_APPROACH_EPS, components below POOL_REST_EPS.)
+	const double R = sim->def.params.ball_radius;
+	for (int k = 0; k < count; ++k)
+		if (fabs(s[k].vel.x - before[k].vel.x) > POOL_APPROACH_EPS || fabs(s[k].vel.y - before[k].vel.y) > POOL_APPROACH_EPS ||
+		    R * pool_v3_len(pool_v3_sub(s[k].omega, before[k].omega)) > POOL_APPROACH_EPS)
+			return 0;
+	pool_ball_state tidy[2];
+	for (int k = 0; k < count; ++k) {
+		tidy[k] = before[k];
+		pool_motion_after_impulse(&sim->def, &tidy[k]);
+	}
+	pool_link_keep_linked(&sim->link, inv, tidy, count);
+	return memcmp(s, tidy, sizeof s[0] * (size_t)count) == 0;
+}
+
 // Applies the event in slot `slot` (its key is the queue's minimum) at its time.
 static pool_result process(pool_sim *sim, int slot) {
 	const pool_event_key key = sim->keys[slot];
@@ -328,11 +396,15 @@ static pool_result process(pool_sim *sim, int slot) {
 		sim->processed = now;
 		return r;
 	}
-	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE};
+	pool_event_context ctx = {&sim->def, POOL_RAIL_NONE, POOL_POCKET_NONE, &sim->shape, -1};
 	if (type == POOL_EVENT_BALL_CUSHION || type == POOL_EVENT_POCKET)
 		ctx.rail = b->own_rail;
 	if (type == POOL_EVENT_POCKET)
 		ctx.pocket = b->own_pocket;
+	if (type == POOL_EVENT_BALL_CUSHION && b->own_part >= 0) {
+		ctx.part = b->own_part;
+		ctx.pocket = b->own_pocket; // the pocket of a facing or jaw
+	}
 	int inv[2] = {slot, -1}, count = 1;
 	if (type == POOL_EVENT_BALL_BALL) {
 		// Body 1 is the ball with the smaller id, so the event reads the same from both slots.
@@ -345,6 +417,11 @@ static pool_result process(pool_sim *sim, int slot) {
 		}
 		count = 2;
 	}
+	// A ball LINK holds: its cluster's step ends here, at the length it lasted, and the event
+	// acts on the states the step left (a cluster's balls are the solver's, not the world's).
+	const pool_result cut = pool_link_cut(&sim->link, inv, count, now);
+	if (cut || pool_link_starved(&sim->link))
+		return cut;
 	pool_ball_state s[2], before[2];
 	for (int k = 0; k < count; ++k) {
 		pool_world_state_now(sim, inv[k], now, &s[k]);
@@ -356,13 +433,14 @@ static pool_result process(pool_sim *sim, int slot) {
 	const int apart = type == POOL_EVENT_BALL_BALL &&
 	                  pool_v3_len(pool_v3_sub(s[0].pos, s[1].pos)) - 2.0 * sim->def.params.ball_radius > POOL_TOUCH_TOLERANCE;
 	const int flags = handle && !apart ? handle(&ctx, type, s, count) : 0;
+	pool_link_keep_linked(&sim->link, inv, s, count); // (a handler derives a motion state from velocities)
 	// A graze: the prediction found the pair touching while approaching by a rounding-level
 	// speed, and at the event they are already parting, so Petit's law gave no impulse and the
 	// states are unchanged. That is no collision: nothing is recorded (a player's "first ball
 	// hit" must not be a ball that was never touched) and the pair is predicted again from here,
 	// where the contact rule sees it parting. A run of such no-ops at one instant (never seen)
 	// would be recorded after NOOP_LIMIT, so the shot still makes progress to max_events.
-	const int unchanged = flags == 0 && memcmp(s, before, sizeof s[0] * (size_t)count) == 0;
+	const int unchanged = flags == 0 && no_impulse(sim, inv, s, before, count);
 	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
 	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
 	// persistent contact by definition: LINK takes it at once (no event of its own is recorded).
@@ -373,6 +451,10 @@ static pool_result process(pool_sim *sim, int slot) {
 		sim->processed = now;
 		return taken;
 	}
+	if (type == POOL_EVENT_BALL_BALL && unchanged && now > sim->noop_time) {
+		sim->noop_streak = 0; // (a run at one instant is what the limit bounds)
+		sim->noop_time = now;
+	}
 	if (type == POOL_EVENT_BALL_BALL && unchanged && sim->noop_streak < NOOP_LIMIT) {
 		sim->noop_streak++;
 		sim->time = now;
@@ -381,28 +463,54 @@ static pool_result process(pool_sim *sim, int slot) {
 		return POOL_OK;
 	}
 	sim->noop_streak = 0;
-	pool_link_keep_linked(&sim->link, inv, s, count);
 	for (int k = 0; k < count; ++k)
 		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
 	// A pocket event names its pocket, not the rail whose mouth it was.
 	record(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
+	if (type == POOL_EVENT_BALL_CUSHION && sim->history.n_events > 0 && ctx.part >= 0)
+		sim->history.events[sim->history.n_events - 1].part = sim->shape.parts[ctx.part].part;
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
 	return pool_link_after_event(&sim->link, type, ctx.rail, inv, s, count, now);
 }
 
-int pool_sim_step(pool_sim *sim) {
-	if (!sim)
-		return POOL_ERR_INVALID_ARGUMENT;
+// Says in sim->last_error what made the step at `now` fail with r.
+static pool_result step_failed(pool_sim *sim, pool_result r, double now) {
+	if (r == POOL_ERR_OUT_OF_MEMORY) {
+		pool_error_set(&sim->last_error, r,
+		               "t = %.17g s: out of memory; nothing of this step was done, it runs again once memory is back",
+		               now);
+	} else if (r == POOL_ERR_INTERNAL) {
+		double residual = 0.0;
+		int balls = 0, contacts = 0;
+		pool_link_failure(&sim->link, &residual, &balls, &contacts);
+		pool_error_set(&sim->last_error, r,
+		               "link step at t = %.17g s: the LCP of a cluster of %d balls (%d contacts) has no solution within "
+		               "its residual limit %g (best residual %.3g): the shot cannot go on",
+		               now, balls, contacts, POOL_LINK_RESIDUAL_MAX, residual);
+	} else {
+		pool_error_set(&sim->last_error, r, "event at t = %.17g s: %s", now, pool_result_str(r));
+	}
+	return r;
+}
+
+static int step(pool_sim *sim) {
 	if (sim->failed)
-		return sim->failed;
+		return sim->failed; // (last_error says why, since the step that failed)
+	sim->last_error.message[0] = '\0';
 	if (sim->stop != POOL_STOP_NONE)
 		return 0;
 	if (!sim->predicted)
 		pool_schedule_predict_all(sim);
 	const pool_event_key *top = sim->n > 0 ? &sim->keys[pool_event_queue_top(&sim->queue)] : NULL;
 	if (!top || !isfinite(top->time)) {
+		// Nothing will happen again: no ball in the air, none moving (a flight always ends, and
+		// a prediction cut at max_time reports an event beyond it, pool_schedule_beyond).
+		for (int i = 0; i < sim->n; ++i)
+			POOL_ASSERT_MSG(!sim->body[i].active || (sim->cur[i].motion != POOL_MOTION_AIRBORNE &&
+			                                         pool_v3_len(sim->cur[i].vel) == 0.0),
+			                "at rest, every ball still");
 		sim->stop = POOL_STOP_REST;
 		sim->processed = INFINITY;
 		return 0;
@@ -419,23 +527,41 @@ int pool_sim_step(pool_sim *sim) {
 		return 0;
 	}
 	// Room for the event and the LINK events it can bring (each with up to every ball's state):
-	// a collision between two clusters' balls dissolves both (two link_end) and may start a
-	// cluster (link_begin); a step releases its loose balls (link_end) and records itself. So
-	// nothing past this point runs out of memory but a link step's LCP workspace.
-	if (pool_history_reserve(&sim->history, &sim->alloc, 4, 2 + 3 * sim->n))
-		return POOL_ERR_OUT_OF_MEMORY;
+	// a collision between two clusters' balls cuts both steps (two link_step), dissolves both (two
+	// link_end) and may start a cluster (link_begin); a step releases its loose balls (link_end)
+	// and records itself. So nothing past this point runs out of memory but a link step's LCP
+	// workspace (and the history, should a step's mergers and strays need more: it grows then).
+	if (pool_history_reserve(&sim->history, &sim->alloc, 6, 2 + 5 * sim->n))
+		return step_failed(sim, POOL_ERR_OUT_OF_MEMORY, top->time);
 	sim->started = 1;
 	// A failed link step (its LCP unsolved, or out of memory) ends the shot with that error:
 	// never silently wrong velocities.
+	const int recorded = sim->history.n_events;
+	const double now = top->time;
 	const pool_result r = process(sim, pool_event_queue_top(&sim->queue));
+	if (pool_link_starved(&sim->link)) {
+		// LINK needed an event the limit has no room for and did nothing: the event limit cut
+		// the shot here (whatever comes next, even after max_time).
+		sim->stop = POOL_STOP_MAX_EVENTS;
+		return r ? step_failed(sim, r, now) : sim->history.n_events > recorded;
+	}
 	if (r) {
 		// Out of memory leaves the step undone (it runs again once memory is back); a failed
 		// solve is final.
 		if (r != POOL_ERR_OUT_OF_MEMORY)
 			sim->failed = r;
-		return r;
+		return step_failed(sim, r, now);
 	}
 	return 1;
+}
+
+int pool_sim_step(pool_sim *sim) {
+	if (!sim)
+		return POOL_ERR_INVALID_ARGUMENT;
+	const int r = step(sim);
+	if (r >= 0)
+		pool_world_check(sim); // (the sanitizer build: every invariant after every step)
+	return r;
 }
 
 pool_result pool_sim_run(pool_sim *sim) {
@@ -446,8 +572,11 @@ pool_result pool_sim_run(pool_sim *sim) {
 }
 
 pool_result pool_sim_run_until(pool_sim *sim, double t) {
-	if (!sim || isnan(t))
+	if (!sim)
 		return POOL_ERR_INVALID_ARGUMENT;
+	if (isnan(t))
+		return pool_error_set(&sim->last_error, POOL_ERR_INVALID_ARGUMENT, "run_until: t must be a time in s, not NaN");
+	sim->last_error.message[0] = '\0';
 	for (;;) {
 		if (sim->stop != POOL_STOP_NONE)
 			return POOL_OK;
@@ -482,11 +611,28 @@ int pool_sim_ball_count(const pool_sim *sim) { return sim ? sim->n : 0; }
 
 const pool_ball_state *pool_sim_balls(const pool_sim *sim) { return sim ? sim->cur : NULL; }
 
-pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out) {
-	if (!sim || !out || isnan(t) || t < 0.0)
-		return POOL_ERR_INVALID_ARGUMENT;
+// The last_error of a read-only call: what a caller reads after it failed. The simulation is
+// not changed otherwise (and, like every call, is not to be shared between threads at once).
+static pool_error *read_error(const pool_sim *sim) { return &((pool_sim *)sim)->last_error; }
+
+// Whether states at t can be read: t a time, and processed (last_error otherwise).
+static pool_result readable(const pool_sim *sim, const char *what, double t) {
+	if (isnan(t) || t < 0.0)
+		return pool_error_set(read_error(sim), POOL_ERR_INVALID_ARGUMENT, "%s: t = %g s: must be a time >= 0", what, t);
 	if (t > sim->processed)
-		return POOL_ERR_STATE;
+		return pool_error_set(read_error(sim), POOL_ERR_STATE,
+		                      "%s: t = %.17g s is past the time processed, %.17g s: run the shot there first", what, t,
+		                      sim->processed);
+	return POOL_OK;
+}
+
+pool_result pool_sim_state_at(const pool_sim *sim, double t, pool_ball_state *out) {
+	if (!sim || !out)
+		return POOL_ERR_INVALID_ARGUMENT;
+	const pool_result r = readable(sim, "state_at", t);
+	if (r)
+		return r;
+	read_error(sim)->message[0] = '\0';
 	pool_history_state_at(&sim->history, &sim->def.params, sim->n, t, out);
 	return POOL_OK;
 }
@@ -497,14 +643,16 @@ pool_result pool_sim_states_at(const pool_sim *sim, const double *times, int cou
 		return POOL_ERR_INVALID_ARGUMENT;
 	// Every time is checked before any state is written, so a failed call leaves out alone.
 	for (int k = 0; k < count; ++k) {
-		const double t = times[k];
-		pool_result r = isnan(t) || t < 0.0 ? POOL_ERR_INVALID_ARGUMENT : t > sim->processed ? POOL_ERR_STATE : POOL_OK;
+		char what[32];
+		snprintf(what, sizeof what, "states_at[%d]", k);
+		const pool_result r = readable(sim, what, times[k]);
 		if (r != POOL_OK) {
 			if (bad_index)
 				*bad_index = k;
 			return r;
 		}
 	}
+	read_error(sim)->message[0] = '\0';
 	for (int k = 0; k < count; ++k)
 		pool_history_state_at(&sim->history, &sim->def.params, sim->n, times[k], out + (size_t)k * (size_t)sim->n);
 	return POOL_OK;
@@ -522,6 +670,8 @@ const pool_ball_state *pool_sim_event_states(const pool_sim *sim, const pool_eve
 	return &sim->history.states[event->first_state];
 }
 
+
+const char *pool_sim_last_error(const pool_sim *sim) { return sim ? sim->last_error.message : "sim: missing"; }
 
 pool_result pool_sim_link_stats(const pool_sim *sim, pool_link_stats *out) {
 	if (!sim || !out)

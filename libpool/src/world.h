@@ -4,6 +4,7 @@
 //                kind's handler and recorded, and its bodies start new segments;
 //   history.c    the events, their states and each ball's chain of states (pool_sim_state_at);
 //   schedule.c   the event heap over bodies and the predictions that fill it;
+//   broadphase.c which bodies a prediction looks at (a grid of the paths' reach, many balls);
 //   segment.c    the closed-form motion of each state (one polynomial per segment);
 //   handlers.c   one small function per event kind, each in the file of its physics
 //                (motion.c, ball_ball.c, cushion.c, cloth.c);
@@ -13,11 +14,13 @@
 #ifndef POOL_WORLD_H
 #define POOL_WORLD_H
 
+#include "broadphase.h"
 #include "event_queue.h"
 #include "history.h"
 #include "link.h"
 #include "pool/sim.h"
 #include "segment.h"
+#include "table_shape.h"
 
 /// A ball's runtime record: its current segment and its own next event.
 typedef struct pool_body {
@@ -26,7 +29,8 @@ typedef struct pool_body {
 	double own_time;          ///< s, next own event (state change, cushion, pocket); absolute
 	pool_event_type own_kind; ///< its kind
 	pool_rail own_rail;       ///< for a cushion or pocket event
-	pool_pocket own_pocket;   ///< for a pocket event
+	pool_pocket own_pocket;   ///< for a pocket event; for a cushion event, the pocket of its facing or jaw
+	int own_part;             ///< for a cushion event with pockets "jaws": the part of the nose curve
 	int partner;              ///< other body of the pending event in the queue slot, or -1
 	int changed;              ///< scratch of pool_schedule_after_event: among the changed bodies
 } pool_body;
@@ -35,6 +39,7 @@ struct pool_sim {
 	pool_sim_def def;
 	pool_allocator alloc;
 	double dc; // m, horizontal centre distance from a nose line at contact
+	pool_table_shape shape; // the table's nose curve for this ball radius (table_shape.h)
 
 	int n, cap_balls;
 	pool_ball_state *cur; // segment start states (pool_sim_balls)
@@ -42,6 +47,7 @@ struct pool_sim {
 	pool_event_key *keys;
 	int *heap, *hpos, *work;
 	pool_event_queue queue;
+	pool_broadphase broad;  // which bodies each contact search looks at (broadphase.h)
 
 	pool_link link;         // LINK's own state (link.h)
 	pool_history history;   // the shot so far (history.h)
@@ -53,7 +59,8 @@ struct pool_sim {
 	pool_stop_reason stop;
 	int predicted; // the queue holds predictions for every body
 	int started;   // an event was recorded: balls can no longer be added
-	int noop_streak; // contacts found to be grazes (no impulse) in a row, not recorded
+	int noop_streak; // contacts found to be grazes (no impulse) in a row at one instant, not recorded
+	double noop_time; // s, that instant
 };
 
 /// Ball i's state at time t, within its current segment (closed form from the segment start).

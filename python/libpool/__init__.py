@@ -30,10 +30,11 @@ from ._ffi import Models, SimDef, Strike, TableDef, Vec3, library_path
 
 __all__ = [
     "PoolError", "Ball", "EventRecord", "Sim", "TableDef", "Params", "Strike", "SimDef", "Vec3",
-    "Allocator", "table_preset", "default_table", "default_params", "default_sim_def",
+    "Allocator", "table_preset", "params_preset", "default_table", "default_params", "default_sim_def",
     "validate_table", "validate_params", "strike_velocities", "rack", "break_strike",
     "quartic_real_roots", "quartic_smallest_root_in", "library_path", "RESULT_NAMES",
-    "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict",
+    "Models", "MODEL_KINDS", "model_names", "make_models", "models_dict", "model_sets",
+    "default_models", "thesis_models",
     "version", "ball_on_cloth", "MOTION_NAMES", "EVENT_TYPES", "STOP_REASONS", "write_result",
 ]
 
@@ -54,7 +55,7 @@ EVENT_TYPES = ("strike", "slide_roll", "roll_stop", "spin_stop", "ball_ball", "b
                "ball_table", "pocket", "off_table", "link_begin", "link_step", "link_end")
 STOP_REASONS = ("none", "rest", "max_time", "max_events")
 _STOP_NAMES = {0: None, 1: "rest", 2: "max_time", 3: "max_events"}
-_RACKS = {"8ball": 0, "9ball": 1}
+_RACKS = {"8ball": 0, "9ball": 1, "snooker": 2, "carom": 3}
 _MOTION_POCKETED = 6
 # Records are plain slotted dataclasses: frozen ones cost about twice as much to build, and a
 # break builds a few hundred of them.
@@ -168,13 +169,15 @@ class Ball:
 @dataclass(**_DATACLASS_OPTS)
 class EventRecord:
     """One processed event: time (s), type name ("ball_ball", ...), ids of the balls involved,
-    rail and pocket names (None when not applicable), and the balls' states just after it."""
+    rail and pocket names (None when not applicable), the balls' states just after it, and the
+    part of the cushion a ball_cushion event touched ("nose", "facing", "jaw"; None otherwise)."""
     time: float
     type: str
     balls: Tuple[int, ...]
     rail: Optional[str]
     pocket: Optional[str]
     after: Tuple[Ball, ...]
+    part: Optional[str] = None
 
 
 _name_cache = {}
@@ -199,7 +202,7 @@ def _motion_name(m):
 # Raw layouts for bulk reads (one string_at + iter_unpack instead of a ctypes attribute access
 # per number); checked against the ctypes mirrors at import, which the tests check against C.
 _BALL_FMT = struct.Struct("=ii9d")
-_EVENT_FMT = struct.Struct("=d5i4x")
+_EVENT_FMT = struct.Struct("=d6i")  # time, type, rail, pocket, ball_count, first_state, part
 assert _BALL_FMT.size == sizeof(CBallState) and _EVENT_FMT.size == sizeof(CEvent)
 
 
@@ -222,9 +225,19 @@ def default_table():
 
 
 def table_preset(name):
-    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft". A name holding a NUL
-    character raises ValueError (TypeError if not a str); an unknown one, PoolError."""
+    """A TableDef by preset name: "wpa-9ft", "wpa-8ft", "wpa-7ft", "snooker", "carom". A name
+    holding a NUL character raises ValueError (TypeError if not a str); an unknown one, PoolError.
+    Snooker and carom are played with their own balls and cloth: params_preset."""
     return _table_preset(name, "table_preset: name")
+
+
+def params_preset(name):
+    """The Params a table preset is played with (its balls and cloth; pool_params_preset)."""
+    p = Params()
+    code = _lib().pool_params_preset(_c_string(name, "params_preset: name"), byref(p))
+    if code < 0:
+        raise PoolError(code, f"table.preset: unknown preset '{name}'")
+    return p
 
 
 def _table_preset(name, arg):
@@ -241,7 +254,8 @@ def default_params():
 
 
 def default_sim_def():
-    """pool_default_sim_def(): WPA 9 ft, default params, planar, max_time 120 s, 100000 events."""
+    """pool_default_sim_def(): WPA 9 ft, default params, planar, max_time 120 s, 100000 events,
+    the default models (default_models())."""
     return _lib().pool_default_sim_def()
 
 
@@ -311,16 +325,17 @@ def _rack_c(kind, gap, table, params):
     if not isinstance(kind, str):
         raise TypeError(f"rack: kind: expected a str, got {_type_name(kind)}")
     if kind not in _RACKS:
-        raise PoolError(_ERR_INVALID_ARGUMENT, f"rack: unknown kind '{kind}' (8ball or 9ball)")
+        raise PoolError(_ERR_INVALID_ARGUMENT,
+                        f"rack: unknown kind '{kind}' (8ball, 9ball, snooker or carom)")
     t = table if table is not None else default_table()
     p = params if params is not None else default_params()
-    out = (CBallState * 16)()
+    out = (CBallState * 32)()
     n = _check(_lib().pool_rack(_RACKS[kind], byref(t), byref(p), _finite(gap, "rack.gap"), out,
-                                16))
+                                32))
     return out[:n]
 
 
-# ---- models (docs/physics.md "Optional models") ------------------------------------------------------
+# ---- models (docs/physics.md "Models") ------------------------------------------------------
 
 # The keys of a scenario's "models" object, with the C functions naming their models.
 MODEL_KINDS = ("cushion", "ball_ball_friction", "squirt")
@@ -333,7 +348,7 @@ _MAX_MODELS_PER_KIND = 16  # model enumerations are small; bounds the search for
 
 
 def model_names(kind):
-    """The names of one kind's models, the default first, as the library knows them:
+    """The names of one kind's models, the thesis law first, as the library knows them:
     model_names("cushion") == ["petit", "mathavan2010"]. An unknown kind raises PoolError."""
     if kind not in _MODEL_FUNCTIONS:
         raise PoolError(_ERR_INVALID_ARGUMENT,
@@ -360,23 +375,64 @@ def _model_value(kind, name):
     return value if value >= 0 else None
 
 
+def model_sets():
+    """The names of the model sets, as the library knows them: ["default", "thesis"]."""
+    names, i = [], 0
+    while (name := _lib().pool_models_preset_name(i)) is not None:
+        names.append(name.decode())
+        i += 1
+    return names
+
+
+def default_models():
+    """The default laws (a Models): "mathavan2010" cushions, "alciatore" ball-ball friction, no
+    squirt: the measured ones (docs/physics.md "Models")."""
+    return _lib().pool_default_models()
+
+
+def thesis_models():
+    """The "thesis" model set (a Models, all zero): the 2012 work's laws, "petit", "constant",
+    "none", which were the defaults before issue 25."""
+    return _lib().pool_thesis_models()
+
+
+def _model_set(name, path):
+    """The Models of a set by name, or PoolError naming `path`."""
+    out = Models()
+    if isinstance(name, str) and "\0" not in name:
+        try:
+            if _lib().pool_models_preset(name.encode("utf-8"), byref(out)) == 0:
+                return out
+        except UnicodeEncodeError:
+            pass
+    elif not isinstance(name, str):
+        raise PoolError(_ERR_INVALID_ARGUMENT, f"{path}: must be a string")
+    raise PoolError(_ERR_INVALID_ARGUMENT,
+                    f'{path}: unknown model set "{name}" ({", ".join(model_sets())})')
+
+
 def make_models(models=None, **names):
-    """A C Models (pool_models) from names, as a scenario's "models" object gives them:
-    make_models({"cushion": "mathavan2010"}) or make_models(cushion="mathavan2010",
-    squirt="endmass"); kinds not given keep the defaults ("petit", "constant", "none"). A Models
-    is copied. Unknown kinds or names raise PoolError (POOL_ERR_INVALID_ARGUMENT) naming the field,
-    e.g. 'models.cushion: unknown model "foo" (petit, mathavan2010)'."""
+    """A C Models (pool_models) as a scenario's "models" gives it: None (the defaults), a model
+    set's name ("thesis", "default"), a dict of names, make_models({"cushion": "petit"}) or
+    make_models(cushion="petit", squirt="endmass"), whose "set" (default "default") is
+    overridden kind by kind: make_models({"set": "thesis", "squirt": "endmass"}); or a Models
+    (copied; names then override it). Unknown sets, kinds or names raise PoolError
+    (POOL_ERR_INVALID_ARGUMENT) naming the field, e.g. 'models.cushion: unknown model "foo"
+    (petit, mathavan2010)'."""
     if isinstance(models, Models):
         out = Models.from_buffer_copy(models)
         if not names:
             return out
         models = {}
     elif models is None:
-        out, models = Models(), {}
+        out, models = default_models(), {}
+    elif isinstance(models, str):
+        out, models = _model_set(models, "models"), {}
     elif isinstance(models, dict):
-        out = Models()
+        out = _model_set(models["set"], "models.set") if "set" in models else default_models()
+        models = {k: v for k, v in models.items() if k != "set"}
     else:
-        raise TypeError(f"models: expected a dict of names or a Models, got "
+        raise TypeError(f"models: expected a model set name, a dict of names or a Models, got "
                         f"{type(models).__name__}")
     for kind, name in list(models.items()) + list(names.items()):
         if kind not in _MODEL_FUNCTIONS:
@@ -430,6 +486,7 @@ def _sim_def(table, params, max_time, max_events, airborne, models=None):
     if table is not None:
         if isinstance(table, str):
             d.table = _table_preset(table, "table")
+            d.params = params_preset(table)  # a preset's own balls and cloth
         elif isinstance(table, TableDef):
             d.table = table
         else:
@@ -455,11 +512,13 @@ class Sim:
 
     table: a preset name ("wpa-9ft"...) or a TableDef; params: a Params (default_params());
     max_time in s, max_events; airborne: True for motion off the cloth (jumps, hops, balls
-    leaving the table; False, the default, is planar); models: the
-    optional models (docs/physics.md "Optional models") as a dict of names, e.g. {"cushion":
-    "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "endmass"} (kinds not given keep
-    the defaults), or a Models (make_models). Their parameters (throw_a, throw_b, throw_c,
-    cue_end_mass) are in params.
+    leaving the table; False, the default, is planar); models: the laws (docs/physics.md
+    "Models"), as make_models takes them: a set's name ("thesis": the 2012 work's laws), a
+    dict of names, e.g. {"squirt": "endmass"} or {"set": "thesis", "squirt": "endmass"}
+    (kinds not given come from the set, default "default"), or a Models. Without it the
+    defaults: "mathavan2010" cushions, "alciatore" ball-ball friction. Their parameters
+    (throw_a, throw_b, throw_c, cue_end_mass, e_cushion_mathavan, mu_cushion_mathavan) are
+    in params.
 
     Threads: each method holds the Sim's lock (Sim.lock, reentrant) while it uses the C
     simulation, so calls from several threads run one after the other (a long run() makes the
@@ -565,8 +624,8 @@ class Sim:
 
     @property
     def models(self):
-        """The models in use, by name: {"cushion": "petit", "ball_ball_friction": "constant",
-        "squirt": "none"} unless chosen otherwise."""
+        """The models in use, by name: {"cushion": "mathavan2010", "ball_ball_friction":
+        "alciatore", "squirt": "none"} unless chosen otherwise."""
         return models_dict(self.definition.models)
 
     def reset(self, table=None, params=None, max_time=None, max_events=None, airborne=None,
@@ -577,6 +636,7 @@ class Sim:
         with self._lock:
             p = self._p()
             err = CError()
+            self._rack_states = None
             if table is None and params is None and max_time is None and max_events is None \
                     and airborne is None and models is None:
                 _check(_lib().pool_sim_reset(p, None, byref(err)), err)
@@ -618,11 +678,12 @@ class Sim:
                 self.add_ball(b.id, b.pos, b.vel, b.omega)
 
     def rack(self, kind, gap=0.0):
-        """Adds a standard rack ("8ball" or "9ball", cue ball id 0 on the head spot) for this
+        """Adds a standard rack ("8ball", "9ball", "snooker" or "carom"; cue ball id 0) for this
         sim's table and ball radius; returns the balls added."""
         with self._lock:
             states = _rack_c(kind, gap, self._def.table, self._def.params)
             self._add_c(states)
+            self._rack_states = (CBallState * len(states))(*states)
         return [Ball._from_c(s) for s in states]
 
     def strike(self, ball_id, speed, phi_deg=0.0, theta_deg=0.0, a=0.0, b=0.0):
@@ -638,20 +699,25 @@ class Sim:
             _check(_lib().pool_sim_strike(self._p(), ball, byref(strike), byref(err)), err)
 
     def break_strike(self, speed, ball_id=0):
-        """The centre-ball break (pool_break_strike) on the cue ball."""
-        self.strike_c(ball_id, break_strike(speed))
+        """The centre-ball break on the cue ball: aimed at the first object ball of the last
+        rack() (pool_rack_break_strike), else straight along +x (pool_break_strike)."""
+        racked = getattr(self, "_rack_states", None)
+        if racked is not None:
+            self.strike_c(ball_id, _lib().pool_rack_break_strike(racked, len(racked), float(speed)))
+        else:
+            self.strike_c(ball_id, break_strike(speed))
 
     # running
     def step(self):
         """Processes the next event; False when the shot is over (see stop_reason)."""
         with self._lock:
-            return _check(_lib().pool_sim_step(self._p())) == 1
+            return self._run_check(_lib().pool_sim_step(self._p())) == 1
 
     def run(self):
         """Runs the shot to its end (rest, max_time or max_events); returns stop_reason. Other
         threads' calls on this Sim, close() included, wait until it returns."""
         with self._lock:
-            _check(_lib().pool_sim_run(self._p()))
+            self._run_check(_lib().pool_sim_run(self._p()))
             return self.stop_reason
 
     def run_until(self, t):
@@ -660,7 +726,15 @@ class Sim:
         if math.isnan(t):
             raise PoolError(_ERR_INVALID_ARGUMENT, "t: must be a time in s, got nan")
         with self._lock:
-            _check(_lib().pool_sim_run_until(self._p(), t))
+            self._run_check(_lib().pool_sim_run_until(self._p(), t))
+
+    def _run_check(self, code):
+        """code of a call that runs the shot; a failure raises PoolError with what the library
+        says it met (pool_sim_last_error: a LINK step's unsolved LCP, memory running out...).
+        Call with the lock held."""
+        if code < 0:
+            raise PoolError(code, _lib().pool_sim_last_error(self._p()).decode("utf-8", "replace"))
+        return code
 
     # results
     @property
@@ -737,12 +811,13 @@ class Sim:
             afters = [tuple(states[e[5]:e[5] + e[4]]) for e in events]
         else:
             afters = [tuple(_unpack_balls(raw)) for raw in apart]
-        ev_name, rail_name, pocket_name = (_name_table("pool_event_type_name"),
-                                           _name_table("pool_rail_name"),
-                                           _name_table("pool_pocket_name"))
+        ev_name, rail_name, pocket_name, part_name = (_name_table("pool_event_type_name"),
+                                                      _name_table("pool_rail_name"),
+                                                      _name_table("pool_pocket_name"),
+                                                      _name_table("pool_cushion_part_name"))
         return [EventRecord(t, ev_name(ty), tuple(b.id for b in after), rail_name(r),
-                            pocket_name(pk), after)
-                for (t, ty, r, pk, _, _), after in zip(events, afters)]
+                            pocket_name(pk), after, part_name(pt))
+                for (t, ty, r, pk, _, _, pt), after in zip(events, afters)]
 
     def state_at(self, t):
         """Every ball at time t (exact, closed form between events), by insertion order; t must

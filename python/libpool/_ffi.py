@@ -45,9 +45,14 @@ class Vec3(_Struct):
 
 
 class TableDef(_Struct):
-    """pool_table_def: table geometry in metres."""
+    """pool_table_def: table geometry in metres, cut angles in RADIANS, pockets a
+    pool_pockets_model value (0 mouth_lines, 1 jaws, 2 none)."""
     _fields_ = [("length", c_double), ("width", c_double), ("cushion_height", c_double),
-                ("corner_mouth", c_double), ("side_mouth", c_double)]
+                ("corner_mouth", c_double), ("side_mouth", c_double), ("pockets", c_int),
+                ("corner_cut_angle", c_double), ("side_cut_angle", c_double),
+                ("corner_jaw_radius", c_double), ("side_jaw_radius", c_double),
+                ("corner_shelf", c_double), ("side_shelf", c_double),
+                ("corner_hole_radius", c_double), ("side_hole_radius", c_double)]
 
 
 class Params(_Struct):
@@ -55,7 +60,8 @@ class Params(_Struct):
     _fields_ = [(n, c_double) for n in (
         "g", "mu_slide", "mu_roll", "mu_spin", "mu_ball", "e_ball", "mu_cushion", "e_cushion",
         "mu_table", "e_table", "ball_radius", "ball_mass", "cue_mass",
-        "throw_a", "throw_b", "throw_c", "cue_end_mass")]
+        "throw_a", "throw_b", "throw_c", "cue_end_mass", "e_cushion_mathavan",
+        "mu_cushion_mathavan")]
 
 
 class BallState(_Struct):
@@ -70,9 +76,9 @@ class Strike(_Struct):
 
 
 class Event(_Struct):
-    """pool_event: time, type, rail, pocket, ball_count, first_state."""
+    """pool_event: time, type, rail, pocket, ball_count, first_state, part (pool_cushion_part)."""
     _fields_ = [("time", c_double), ("type", c_int), ("rail", c_int), ("pocket", c_int),
-                ("ball_count", c_int), ("first_state", c_int)]
+                ("ball_count", c_int), ("first_state", c_int), ("part", c_int)]
 
 
 class Allocator(_Struct):
@@ -81,7 +87,7 @@ class Allocator(_Struct):
 
 
 class Models(_Struct):
-    """pool_models: cushion, ball_ball_friction, squirt (C enum values; 0 is the default law)."""
+    """pool_models: cushion, ball_ball_friction, squirt (C enum values; all 0 is the "thesis" set)."""
     _fields_ = [("cushion", c_int), ("ball_ball_friction", c_int), ("squirt", c_int)]
 
 
@@ -116,6 +122,10 @@ _PROTOTYPES = {
     "pool_event_type_name": (c_char_p, [c_int]),
     "pool_rail_name": (c_char_p, [c_int]),
     "pool_pocket_name": (c_char_p, [c_int]),
+    "pool_cushion_part_name": (c_char_p, [c_int]),
+    "pool_pockets_model_name": (c_char_p, [c_int]),
+    "pool_pockets_model_from_name": (c_int, [c_char_p]),
+    "pool_params_preset": (c_int, [c_char_p, POINTER(Params)]),
     "pool_quartic_real_roots": (c_int, [POINTER(c_double), POINTER(c_double)]),
     "pool_quartic_smallest_root_in": (c_int, [POINTER(c_double), c_double, c_double,
                                               POINTER(c_double)]),
@@ -129,6 +139,7 @@ _PROTOTYPES = {
     "pool_rack": (c_int, [c_int, POINTER(TableDef), POINTER(Params), c_double,
                           POINTER(BallState), c_int]),
     "pool_break_strike": (Strike, [c_double]),
+    "pool_rack_break_strike": (Strike, [POINTER(BallState), c_int, c_double]),
     "pool_default_sim_def": (SimDef, []),
     "pool_cushion_model_name": (c_char_p, [c_int]),
     "pool_ball_friction_model_name": (c_char_p, [c_int]),
@@ -136,6 +147,10 @@ _PROTOTYPES = {
     "pool_cushion_model_from_name": (c_int, [c_char_p]),
     "pool_ball_friction_model_from_name": (c_int, [c_char_p]),
     "pool_squirt_model_from_name": (c_int, [c_char_p]),
+    "pool_default_models": (Models, []),
+    "pool_thesis_models": (Models, []),
+    "pool_models_preset": (c_int, [c_char_p, POINTER(Models)]),
+    "pool_models_preset_name": (c_char_p, [c_int]),
     "pool_stop_reason_name": (c_char_p, [c_int]),
     "pool_ball_on_cloth": (BallState, [c_int32, c_double, c_double, POINTER(Params)]),
     "pool_sim_create": (c_int, [POINTER(SimDef), POINTER(_sim_p), _E]),
@@ -146,6 +161,7 @@ _PROTOTYPES = {
     "pool_sim_step": (c_int, [_sim_p]),
     "pool_sim_run": (c_int, [_sim_p]),
     "pool_sim_run_until": (c_int, [_sim_p, c_double]),
+    "pool_sim_last_error": (c_char_p, [_sim_p]),
     "pool_sim_stop_reason": (c_int, [_sim_p]),
     "pool_sim_time": (c_double, [_sim_p]),
     "pool_sim_end_time": (c_double, [_sim_p]),

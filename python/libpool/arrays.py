@@ -18,7 +18,7 @@ __all__ = ["Trajectory", "History", "BALL_DTYPE", "EVENT_DTYPE", "trajectory", "
 BALL_DTYPE = np.dtype([("id", "<i4"), ("motion", "<i4"), ("pos", "<f8", 3), ("vel", "<f8", 3),
                        ("omega", "<f8", 3)])
 EVENT_DTYPE = np.dtype([("time", "<f8"), ("type", "<i4"), ("rail", "<i4"), ("pocket", "<i4"),
-                        ("ball_count", "<i4"), ("first_state", "<i4"), ("pad", "<i4")])
+                        ("ball_count", "<i4"), ("first_state", "<i4"), ("part", "<i4")])
 assert BALL_DTYPE.itemsize == 80 and EVENT_DTYPE.itemsize == 32
 
 
@@ -57,14 +57,15 @@ class History:
     type         int8 [E]         EVENT_TYPES[code]
     rail         int8 [E]         pool_rail (0 south, 1 north, 2 west, 3 east; -1 none)
     pocket       int8 [E]         pool_pocket (sw, se, nw, ne, s, n; -1 none)
+    part         int8 [E]         pool_cushion_part of a cushion event (0 nose, 1 facing, 2 jaw; -1 none)
     ball_count   int32 [E]        balls the event involved
     first        int32 [E]        index of its first after-state in the arrays below
     event        int32 [S]        the event each state follows
     ids          int32 [S]        ball id
     pos, vel, omega float64 [S, 3], motion int8 [S]: the state just after the event
     """
-    __slots__ = ("time", "type", "rail", "pocket", "ball_count", "first", "event", "ids", "pos",
-                 "vel", "omega", "motion")
+    __slots__ = ("time", "type", "rail", "pocket", "part", "ball_count", "first", "event", "ids",
+                 "pos", "vel", "omega", "motion")
 
     def type_names(self):
         return [EVENT_TYPES[t] for t in self.type.tolist()]
@@ -129,6 +130,7 @@ def history(sim):
     h.type = events["type"].astype(np.int8)
     h.rail = events["rail"].astype(np.int8)
     h.pocket = events["pocket"].astype(np.int8)
+    h.part = events["part"].astype(np.int8)  # pool_cushion_part: -1, nose 0, facing 1, jaw 2
     h.ball_count = events["ball_count"].copy()
     h.first = events["first_state"].copy()
     # Only the states that follow an event (the history also keeps the balls' initial states).

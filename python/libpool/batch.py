@@ -21,7 +21,7 @@ from ctypes import PyDLL, byref, c_double, c_int, c_int32, c_void_p, string_at
 
 import numpy as np
 
-from . import MODEL_KINDS, PoolError, _ffi, _model_value, model_names
+from . import MODEL_KINDS, PoolError, _ffi, _model_set, _model_value, model_names
 from ._ffi import BallState as CBallState, Error as CError, SimDef, Strike
 
 __all__ = ["run", "BatchResult", "load_layout", "Layout", "STOP_ERROR", "STOP_NAMES",
@@ -144,6 +144,14 @@ def _lib_message(path, code, err):
     return f"{path}: {message}"
 
 
+def _set_models(d, name, path):
+    """Sets d.models to the model set `name` (the library's), or fails naming `path`."""
+    try:
+        d.models = _model_set(name, path)
+    except PoolError as e:
+        _fail(e.message)
+
+
 def _derive_motion(pos, vel, omega, r):
     if pos[2] > r + 1e-9 or vel[2] != 0.0:
         return 4
@@ -171,6 +179,12 @@ def layout_text(layout):
             return f.read()
     raise TypeError("layout: expected a path, JSON text or a dict, got "
                     f"{type(layout).__name__}")
+
+
+# The table's numeric fields of a scenario (docs/interfaces.md): cut angles in degrees.
+_TABLE_NUMBERS = ("length", "width", "cushion_height", "corner_mouth", "side_mouth",
+                  "corner_cut_angle", "side_cut_angle", "corner_jaw_radius", "side_jaw_radius",
+                  "corner_shelf", "side_shelf", "corner_hole_radius", "side_hole_radius")
 
 
 def load_layout(layout):
@@ -202,29 +216,38 @@ def _parse_document(doc):
             _fail(f"{k}: must be a string")
     d = lib.pool_default_sim_def()
     err = CError()
-    # table
+    # table (a preset's balls and cloth become the params' defaults, as in pool-sim)
     t = doc.get("table")
+    preset = None
+    presets = "wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom"
     if isinstance(t, str):  # "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}
         if "\0" in t or lib.pool_table_preset(t.encode(), byref(d.table)) != 0:
-            _fail(f'table: unknown preset "{t}" (wpa-9ft, wpa-8ft, wpa-7ft)')
-        t = None
+            _fail(f'table: unknown preset "{t}" ({presets})')
+        preset, t = t, None
     if t is not None:
         if not isinstance(t, dict):
             _fail("table: must be a preset name or an object")
-        _fields(t, "table", ("preset", "length", "width", "cushion_height", "corner_mouth",
-                             "side_mouth"))
+        _fields(t, "table", ("preset",) + _TABLE_NUMBERS + ("pockets",))
         if "preset" in t:
             if not isinstance(t["preset"], str):
                 _fail("table.preset: must be a string")
             if "\0" in t["preset"] or lib.pool_table_preset(t["preset"].encode(),
                                                              byref(d.table)) != 0:
-                _fail(f'table.preset: unknown preset "{t["preset"]}" (wpa-9ft, wpa-8ft, wpa-7ft)')
-        for k in ("length", "width", "cushion_height", "corner_mouth", "side_mouth"):
+                _fail(f'table.preset: unknown preset "{t["preset"]}" ({presets})')
+            preset = t["preset"]
+        if "pockets" in t:
+            if t["pockets"] not in ("mouth_lines", "jaws", "none"):
+                _fail('table.pockets: must be "jaws", "mouth_lines" or "none"')
+            d.table.pockets = ("mouth_lines", "jaws", "none").index(t["pockets"])
+        for k in _TABLE_NUMBERS:
             if k in t:
-                setattr(d.table, k, _number(t[k], f"table.{k}"))
+                v = _number(t[k], f"table.{k}")
+                setattr(d.table, k, v * (math.pi / 180.0) if k.endswith("cut_angle") else v)
         r = lib.pool_table_def_validate(byref(d.table), byref(err))
         if r != 0:
             _fail(_lib_message("table", r, err))
+    if preset is not None:
+        lib.pool_params_preset(preset.encode(), byref(d.params))
     # params
     p = doc.get("params")
     if p is not None:
@@ -254,12 +277,18 @@ def _parse_document(doc):
                 _fail("options.max_time: must be > 0")
         if "max_events" in o:
             d.max_events = _integer(o["max_events"], "options.max_events", 1, 2 ** 31 - 1)
-    # models: each kind by a name the library knows (the parser's parse_models)
+    # models: a set's name, or an object whose "set" each kind overrides by a name the library
+    # knows (the parser's parse_models)
     m = doc.get("models")
     if m is not None:
+        if isinstance(m, str):
+            _set_models(d, m, "models")
+            m = {}
         if not isinstance(m, dict):
-            _fail("models: must be an object")
-        _fields(m, "models", MODEL_KINDS)
+            _fail("models: must be a model set name or an object")
+        _fields(m, "models", ("set",) + MODEL_KINDS)
+        if "set" in m:
+            _set_models(d, m["set"], "models.set")
         for kind in MODEL_KINDS:
             if kind not in m:
                 continue
@@ -709,7 +738,8 @@ def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
             if r == 0:
                 r = state_at_(sim, c_double(t_end), c_void_p(final_base + row_size * (i - i0)))
             if r != 0:
-                raise PoolError(r, "shot %d: simulation failed at t = %.17g s" % (i, time_(sim)))
+                raise PoolError(r, "shot %d: simulation failed at t = %.17g s: %s" % (
+                    i, time_(sim), lib.pool_sim_last_error(sim).decode("utf-8", "replace")))
             ev_stop[i] = stop_(sim)
             ev_end[i] = t_end
             if layout.game is not None:

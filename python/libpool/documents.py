@@ -24,17 +24,31 @@ def _state(b):
             "state": b.motion}
 
 
+_POCKETS_MODELS = ("mouth_lines", "jaws", "none")
+# The geometry of pockets "jaws" as results and scenarios write it (cut angles in degrees).
+_JAW_FIELDS = ("corner_cut_angle", "side_cut_angle", "corner_jaw_radius", "side_jaw_radius",
+               "corner_shelf", "side_shelf", "corner_hole_radius", "side_hole_radius")
+
+
+def _table(t):
+    table = {k: getattr(t, k) for k in _TABLE_FIELDS}
+    table["pockets"] = _POCKETS_MODELS[t.pockets] if 0 <= t.pockets < 3 else "unknown"
+    if t.pockets == 1:
+        for k in _JAW_FIELDS:
+            v = getattr(t, k)
+            table[k] = v * 180.0 / math.pi if k.endswith("cut_angle") else v
+    return table
+
+
 def _definition(sim):
     d = sim.definition
-    return d, {k: getattr(d.table, k) for k in _TABLE_FIELDS}, \
-        {k: getattr(d.params, k) for k in _PARAM_FIELDS}
+    return d, _table(d.table), {k: getattr(d.params, k) for k in _PARAM_FIELDS}
 
 
-def _models_if_chosen(d):
-    m = d.models
-    if m.cushion == 0 and m.ball_ball_friction == 0 and m.squirt == 0:
-        return None
-    return models_dict(m)
+def _models(d):
+    # Always: a document says which laws it means, whatever a reader's defaults are (a
+    # zero-initialised pool_models is thesis, not the defaults).
+    return models_dict(d.models)
 
 
 def layout(sim, t=None):
@@ -58,9 +72,7 @@ def layout(sim, t=None):
         doc = {"format": "libpool-scenario/1", "table": table, "params": params, "balls": out,
                "options": {"airborne": bool(d.airborne), "max_time": d.max_time,
                            "max_events": d.max_events}}
-        models = _models_if_chosen(d)
-        if models:
-            doc["models"] = models
+        doc["models"] = _models(d)
     return doc
 
 
@@ -129,15 +141,15 @@ def result(sim, sample_dt=None):
         final = sim.state_at(end)
         doc = {"format": "libpool-result/1", "table": table, "ball_radius": d.params.ball_radius,
                "params": params}
-        models = _models_if_chosen(d)
-        if models:
-            doc["models"] = models
+        doc["models"] = _models(d)
         doc["initial"] = [_state(b) for b in sim.state_at(0.0)]
         out_events = []
         for e in events:
             ev = {"t": e.time, "type": e.type, "balls": list(e.balls)}
             if e.rail is not None:
                 ev["rail"] = e.rail
+            if e.part is not None:
+                ev["part"] = e.part
             if e.pocket is not None:
                 ev["pocket"] = e.pocket
             ev["after"] = [_state(b) for b in e.after]

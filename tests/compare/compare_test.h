@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "plugin_loader.h"
 #include "scenario_file.h"
 
 namespace compare_test {
@@ -44,6 +46,21 @@ inline std::unique_ptr<pool_compare::Scenario> from_text(const std::string &name
 		++failures;
 	}
 	return s;
+}
+
+/// The engines named on the command line (argv[first..argc)), looked up in plugin_dir; each that
+/// does not load is a counted failure (an engine of the build must be there).
+inline std::vector<pool_compare::Plugin> load_plugins(int argc, char **argv, int first, const char *plugin_dir) {
+	std::vector<pool_compare::Plugin> plugins;
+	for (int i = first; i < argc; ++i) {
+		pool_compare::Plugin plugin;
+		std::string error;
+		CHECK(pool_compare::load_plugin(argv[i], plugin_dir, &plugin, &error), "expected engine missing: %s",
+		      error.c_str());
+		if (plugin.api)
+			plugins.push_back(plugin);
+	}
+	return plugins;
 }
 
 /// Prints the closing line; the exit status.

@@ -408,12 +408,7 @@ int main(int argc, char **argv) {
 	drop_closed_form();
 	hop_closed_form();
 	bool time_stepped = false;
-	for (int i = 3; i < argc; ++i) {
-		Plugin plugin;
-		std::string error;
-		CHECK(load_plugin(argv[i], argv[2], &plugin, &error), "expected engine missing: %s", error.c_str());
-		if (!plugin.api)
-			continue;
+	for (const Plugin &plugin : load_plugins(argc, argv, 3, argv[2])) {
 		engine_lands(plugin);
 		engine_hops_off_rail(plugin);
 		engine_converges_to_libpool(plugin);

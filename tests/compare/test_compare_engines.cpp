@@ -334,12 +334,7 @@ int main(int argc, char **argv) {
 	strike_matches_libpool();
 	events_keyed_by_rail();
 	libpool_reference_beyond_max_time();
-	for (int i = 3; i < argc; ++i) {
-		Plugin plugin;
-		std::string error;
-		CHECK(load_plugin(argv[i], argv[2], &plugin, &error), "expected engine missing: %s", error.c_str());
-		if (!plugin.api)
-			continue;
+	for (const Plugin &plugin : load_plugins(argc, argv, 3, argv[2])) {
 		engine_reproduces_slide(plugin);
 		engine_transfers_speed(plugin);
 		if (std::string(plugin.api->name) == "libpool")

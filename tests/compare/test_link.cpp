@@ -167,14 +167,7 @@ int main(int argc, char **argv) {
 		return 2;
 	}
 	scenario_dir = argv[1];
-	std::vector<Plugin> plugins;
-	for (int i = 3; i < argc; ++i) {
-		Plugin plugin;
-		std::string error;
-		CHECK(load_plugin(argv[i], argv[2], &plugin, &error), "expected engine missing: %s", error.c_str());
-		if (plugin.api)
-			plugins.push_back(plugin);
-	}
+	const std::vector<Plugin> plugins = load_plugins(argc, argv, 3, argv[2]);
 	bool has_libpool = false;
 	for (const Plugin &p : plugins)
 		has_libpool = has_libpool || std::string(p.api->name) == "libpool";

@@ -41,6 +41,10 @@ expect 2 "^pool-compare: --scenario needs" --scenario
 expect 2 "^pool-compare: --plugin-dir" --plugin-dir "$WORK/nowhere"
 expect 2 "^pool-compare: --timeout" --timeout soon
 expect 2 "^pool-compare: --timeout" --timeout -1
+expect 2 "^pool-compare: --scale: '1' is not a ball count in \[2, 4096\]" --scale 16,1
+expect 2 "^pool-compare: --scale: '5000'" --scale 5000
+expect 2 "^pool-compare: --scale needs" --scale
+expect 2 "^pool-compare: --families: unknown family 'crowd'" --scale 16 --families crowd
 
 # Plugins: missing, not a plugin, wrong ABI.
 expect 2 "plugin 'nosuch': no module $PLUGINS/libpool_engine_nosuch.so" --engines nosuch --plugin-dir "$PLUGINS"
@@ -102,7 +106,7 @@ fi
 # The example plugin and libpool: every output, the docs/interfaces.md fields, libpool exact on a closed form.
 if "$BIN" --engines frozen,libpool --scenario "$SCEN/slide.json" "$SCEN/cut30.json" --out "$WORK/run" \
 	--plugin-dir "$PLUGINS" >"$WORK/table" 2>"$WORK/err"; then
-	for f in results.json results.csv report.md slide.png cut30.png; do
+	for f in results.json results.csv report.md slide.png cut30.png slide.svg cut30.svg; do
 		[ -s "$WORK/run/$f" ] || fail "run did not write $f"
 	done
 	grep -q "slide .*libpool .*event" "$WORK/table" || fail "table lacks the libpool slide row: $(cat "$WORK/table")"
@@ -299,6 +303,49 @@ import json, sys
 names = [r['scenario'] for r in json.load(open(sys.argv[1]))]
 assert names == ['slide', 'cushion_hop', 'drop', 'hop', 'jump', 'masse'], names
 " "$WORK/airborne_set/results.json" || fail "--airborne scenario list"
+
+# The scale smoke run (the benchmark runs N up to 1,024 on demand): both families at 16 balls,
+# one step, every built engine. The generated scenarios are written and pool-sim-readable, the
+# records carry the ball count, family and horizon, horizon.json holds libpool's self horizons
+# and every run's track, and the report and plots have the scale and horizon parts.
+ENGS=libpool
+for e in ode bullet; do [ -e "$PLUGINS/libpool_engine_$e.so" ] && ENGS=$ENGS,$e; done
+if "$BIN" --engines "$ENGS" --plugin-dir "$PLUGINS" --scale 16 --dt 1e-3 --out "$WORK/scale" \
+	>"$WORK/scale_table" 2>"$WORK/err"; then
+	for f in scenarios/scale_break_16.json scenarios/scale_gas_16.json horizon.json scale.png scale.svg \
+		scale_gas_16_horizon.png scale_gas_16_horizon.svg scale_break_16.svg; do
+		[ -s "$WORK/scale/$f" ] || fail "--scale did not write $f"
+	done
+	grep -q "Scale: CPU per simulated second" "$WORK/scale/report.md" || fail "report.md lacks the scale section"
+	grep -q "Predictability horizon" "$WORK/scale/report.md" || fail "report.md lacks the horizon section"
+	grep -q "libpool, start 1 nm off" "$WORK/scale_table" || fail "the printed tables lack the self horizons"
+	"$PY" - "$WORK/scale" "$ENGS" <<'PY' || fail "--scale outputs: $(cat "$WORK/err")"
+import json, sys
+out, engines = sys.argv[1], sys.argv[2].split(",")
+rows = json.load(open(out + "/results.json"))
+assert [(r["scenario"], r["engine"]) for r in rows] == [(s, e) for s in ("scale_break_16", "scale_gas_16") for e in engines], rows
+for r in rows:
+    assert r["balls"] == 16 and r["family"] == r["scenario"].split("_")[1], r
+    assert r["spread_runs"] == 0, r  # the horizon replaces the spread
+    assert isinstance(r["horizon_seconds"], float) and 0 < r["horizon_seconds"] <= 2.0, r
+    if r["engine"] == "libpool":
+        assert r["horizon_censored"] is True and r["final_position_error"] == 0, r
+h = json.load(open(out + "/horizon.json"))
+assert h["threshold"] == 0.01, h["threshold"]
+assert [s["scenario"] for s in h["scenarios"]] == ["scale_break_16", "scale_gas_16"]
+for s in h["scenarios"]:
+    assert [x["perturbation"] for x in s["self"]] == [1e-9, 1e-6, 1e-3], s["self"]
+    assert all(len(x["track"]) == 400 and x["runs"] == 8 for x in s["self"])
+    assert len(s["runs"]) == len(engines) - 1 and all(len(r["track"]) == 400 for r in s["runs"])
+    assert s["libpool_cpu_per_sim_second"] > 0
+print("ok: --scale 16 wrote the families, the horizons and the scale summary")
+PY
+	# What --scale writes is a scenario pool-sim reads (the file names the family and ball count).
+	"$(dirname "$BIN")/../tools/pool-sim" "$WORK/scale/scenarios/scale_gas_16.json" -o /dev/null 2>"$WORK/err" ||
+		fail "pool-sim refused the generated gas: $(cat "$WORK/err")"
+else
+	fail "--scale 16 exited $?: $(cat "$WORK/err")"
+fi
 
 [ "$failures" -eq 0 ] && echo "passed" || echo "FAILED: $failures"
 exit $((failures > 0))

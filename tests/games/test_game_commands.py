@@ -258,6 +258,13 @@ class PoolBatchGame(unittest.TestCase):
         self.assertTrue(all(float(r["phi"]) == 10.0 for r in rows))
 
     def test_bad_options(self):
+        if ARGS.pool_sensitivity:
+            p = run([ARGS.pool_sensitivity, self.layout, "--sd", "speed=0.1", "--noise", "fastfiz"])
+            self.assertEqual(p.returncode, 2)
+            self.assertIn("--noise: give --sd or --noise, not both", p.stderr)
+            p = run([ARGS.pool_sensitivity, self.layout, "--noise", "fast"])
+            self.assertEqual(p.returncode, 2)
+            self.assertIn("--noise: 'fast' is not a preset (none, fastfiz) or NAME=SD", p.stderr)
         for args, message in ((["--noise", "spin=1"], "--noise: 'spin': unknown parameter"),
                               (["--noise", "phi=-1"], "--noise: phi: '-1' is not a standard deviation"),
                               (["--seed", "3"], "--seed goes with --random or --noise")):
@@ -384,6 +391,32 @@ class PoolGame(unittest.TestCase):
         p = run([ARGS.pool_game, "9ball", "--target", "3"])
         self.assertEqual(p.returncode, 2)
         self.assertIn("--target: only in three_cushion", p.stderr)
+
+    def test_layout_and_table(self):
+        """--layout: the scenario's table, balls and game state are the start; --table: a preset."""
+        doc = scenario([(0, (0.6, 0.6)), (3, (1.2, 0.6)), (8, (2.0, 1.0)), (12, (1.5, 0.3))],
+                       {"ball": 0, "speed": 1.0},
+                       {"rules": "8ball", "state": {"group": "solids", "fouls": 1, "player": 1}},
+                       table={"preset": "wpa-8ft"})
+        path = write("layout.json", doc)
+        p = self.play("8ball", [{"strike": {"speed": 1.5, "phi": 0.0}, "call": {"ball": 3, "pocket": "e"}}],
+                      "--layout", path, expect=2)
+        self.assertIn("shot 0: answer.called.pocket:", p.stderr)
+        p = self.play("8ball", [{"strike": {"speed": 1.5, "phi": 0.0}, "call": {"ball": 3, "pocket": "ne"}}],
+                      "--layout", path)
+        record = json.loads(p.stdout)
+        self.assertEqual(record["table"]["length"], 92 * 0.0254)
+        self.assertEqual([b["id"] for b in record["start"]], [0, 3, 8, 12])
+        st = record["shots"][0]["state"]
+        self.assertEqual((st["group"], st["fouls"], st["player"], st["called"]),
+                         ("solids", 1, 1, {"ball": 3, "pocket": "ne"}))
+        self.assertEqual(record["shots"][0]["result"]["first_hit"], 3)
+        p = self.play("9ball", [{"strike": {"speed": 8.0}}], "--layout", path, expect=2)
+        self.assertIn("--layout: game.rules: 8ball, not 9ball", p.stderr)
+        p = self.play("9ball", [{"strike": {"speed": 8.0}}], "--table", "wpa-7ft")
+        self.assertEqual(json.loads(p.stdout)["table"]["length"], 78 * 0.0254)
+        p = self.play("9ball", [], "--table", "wpa-10ft", expect=2)
+        self.assertIn("--table: unknown preset", p.stderr)
 
     def test_strikes_ending_keep_the_record(self):
         p = self.play("three_cushion", [{"strike": {"speed": 4, "phi": 10}}], "--target", "2")

@@ -54,7 +54,7 @@ u.check(replayed == original, "replay: %d messages, differ from the original %d"
 shots = [data for ch, data in replayed if ch == "POOL_SHOT"]
 if shots:
     shot = shot_t.decode(shots[-1])
-    u.check([u.event_json(e) for e in shot.events] == want["events"],
+    u.check([u.event_json(e) for e in shot.events] == u.lcm_events(want["events"]),
             "replayed shot differs from pool-sim's result")
 print("logged and replayed %d messages" % len(replayed))
 u.finish()

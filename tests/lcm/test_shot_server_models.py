@@ -1,4 +1,4 @@
-"""The optional models (issue 12) travel in a shot request's scenario_json and reach the
+"""The models (issues 12 and 25) travel in a shot request's scenario_json and reach the
 simulation in pool-shot-server: a request with "models" (and the model parameters) is answered
 with exactly pool-sim's result for the same scenario, whose result says which models made it, and
 which differs from the default models' answer; bad models are answered with error set, naming the
@@ -32,7 +32,7 @@ def with_models(models):
 
 
 shots = {"models": with_models(MODELS), "default": with_models(None),
-         "cushion_only": with_models({"cushion": "mathavan2010"})}
+         "cushion_only": with_models({"cushion": "petit"}), "thesis": with_models("thesis")}
 want = {}
 for name, doc in shots.items():
     path = os.path.join(args.work_dir, name + ".json")
@@ -48,10 +48,15 @@ u.wait_for_line(server, "ready")
 answers = u.Collector(u.URL, ["POOL_SHOT"])
 client = lcm.LCM(u.URL)
 
-ids = {"models": 1, "default": 2, "cushion_only": 3}
+u.check(want["thesis"].get("models") == {"cushion": "petit", "ball_ball_friction": "constant",
+                                         "squirt": "none"},
+        "pool-sim's thesis result: models %r" % want["thesis"].get("models"))
+
+ids = {"models": 1, "default": 2, "cushion_only": 3, "thesis": 4}
 bad = {11: ({"cushion": "rubber"}, 'models.cushion: unknown model "rubber" (petit, mathavan2010)'),
        12: ({"spin": "none"}, "models.spin: unknown field"),
-       13: ("mathavan2010", "models: must be an object")}
+       13: ("mathavan2010", 'models: unknown model set "mathavan2010" (default, thesis)'),
+       14: (["thesis"], "models: must be a model set name or an object")}
 for name, rid in ids.items():
     u.publish_request(client, rid, json.dumps(shots[name]))
 for rid, (models, _) in bad.items():
@@ -73,7 +78,7 @@ for name, rid in ids.items():
 # the way, which the equality with pool-sim alone would not show if pool-sim dropped them too).
 if all(rid in got for rid in ids.values()):
     default_final = u.shot_json(got[ids["default"]])["final"]
-    for name in ("models", "cushion_only"):
+    for name in ("models", "cushion_only", "thesis"):
         u.check(u.shot_json(got[ids[name]])["final"] != default_final,
                 "%s: the same final states as the default models" % name)
 for rid, (_, message) in bad.items():

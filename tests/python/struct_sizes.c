@@ -22,7 +22,11 @@ int main(void) {
 	begin("pool_table_def", sizeof(pool_table_def));
 	FIELD(pool_table_def, length, 0); FIELD(pool_table_def, width, 0);
 	FIELD(pool_table_def, cushion_height, 0); FIELD(pool_table_def, corner_mouth, 0);
-	FIELD(pool_table_def, side_mouth, 1);
+	FIELD(pool_table_def, side_mouth, 0); FIELD(pool_table_def, pockets, 0);
+	FIELD(pool_table_def, corner_cut_angle, 0); FIELD(pool_table_def, side_cut_angle, 0);
+	FIELD(pool_table_def, corner_jaw_radius, 0); FIELD(pool_table_def, side_jaw_radius, 0);
+	FIELD(pool_table_def, corner_shelf, 0); FIELD(pool_table_def, side_shelf, 0);
+	FIELD(pool_table_def, corner_hole_radius, 0); FIELD(pool_table_def, side_hole_radius, 1);
 	begin("pool_params", sizeof(pool_params));
 	FIELD(pool_params, g, 0); FIELD(pool_params, mu_slide, 0); FIELD(pool_params, mu_roll, 0);
 	FIELD(pool_params, mu_spin, 0); FIELD(pool_params, mu_ball, 0); FIELD(pool_params, e_ball, 0);
@@ -30,7 +34,8 @@ int main(void) {
 	FIELD(pool_params, mu_table, 0); FIELD(pool_params, e_table, 0);
 	FIELD(pool_params, ball_radius, 0); FIELD(pool_params, ball_mass, 0);
 	FIELD(pool_params, cue_mass, 0); FIELD(pool_params, throw_a, 0); FIELD(pool_params, throw_b, 0);
-	FIELD(pool_params, throw_c, 0); FIELD(pool_params, cue_end_mass, 1);
+	FIELD(pool_params, throw_c, 0); FIELD(pool_params, cue_end_mass, 0);
+	FIELD(pool_params, e_cushion_mathavan, 0); FIELD(pool_params, mu_cushion_mathavan, 1);
 	begin("pool_ball_state", sizeof(pool_ball_state));
 	FIELD(pool_ball_state, id, 0); FIELD(pool_ball_state, motion, 0); FIELD(pool_ball_state, pos, 0);
 	FIELD(pool_ball_state, vel, 0); FIELD(pool_ball_state, omega, 1);
@@ -39,7 +44,8 @@ int main(void) {
 	FIELD(pool_strike, a, 0); FIELD(pool_strike, b, 1);
 	begin("pool_event", sizeof(pool_event));
 	FIELD(pool_event, time, 0); FIELD(pool_event, type, 0); FIELD(pool_event, rail, 0);
-	FIELD(pool_event, pocket, 0); FIELD(pool_event, ball_count, 0); FIELD(pool_event, first_state, 1);
+	FIELD(pool_event, pocket, 0); FIELD(pool_event, ball_count, 0); FIELD(pool_event, first_state, 0);
+	FIELD(pool_event, part, 1);
 	begin("pool_allocator", sizeof(pool_allocator));
 	FIELD(pool_allocator, alloc, 0); FIELD(pool_allocator, free, 0); FIELD(pool_allocator, context, 1);
 	begin("pool_models", sizeof(pool_models));
@@ -54,10 +60,11 @@ int main(void) {
 	printf(", \"enum_sizes\": {\"pool_motion\": %zu, \"pool_event_type\": %zu, \"pool_rail\": %zu, "
 	       "\"pool_pocket\": %zu, \"pool_result\": %zu, \"pool_stop_reason\": %zu, "
 	       "\"pool_rack_kind\": %zu, \"pool_cushion_model\": %zu, \"pool_ball_friction_model\": %zu, "
-	       "\"pool_squirt_model\": %zu}",
+	       "\"pool_squirt_model\": %zu, \"pool_pockets_model\": %zu, \"pool_cushion_part\": %zu}",
 	       sizeof(pool_motion), sizeof(pool_event_type), sizeof(pool_rail), sizeof(pool_pocket),
 	       sizeof(pool_result), sizeof(pool_stop_reason), sizeof(pool_rack_kind),
-	       sizeof(pool_cushion_model), sizeof(pool_ball_friction_model), sizeof(pool_squirt_model));
+	       sizeof(pool_cushion_model), sizeof(pool_ball_friction_model), sizeof(pool_squirt_model),
+	       sizeof(pool_pockets_model), sizeof(pool_cushion_part));
 	printf("}\n");
 	return 0;
 }

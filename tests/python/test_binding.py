@@ -210,7 +210,7 @@ class Errors(unittest.TestCase):
         self.check(lambda: libpool.Sim(table="snooker-12ft"), "POOL_ERR_UNKNOWN_PRESET", "table.preset")
         self.check(lambda: libpool.Sim(max_time=float("nan")), "POOL_ERR_NON_FINITE", "")
         self.check(lambda: libpool.Sim().add_ball(0, (-1.0, 0.5)), "POOL_ERR_OFF_TABLE", "balls[0].pos")
-        self.check(lambda: libpool.rack("snooker"), "POOL_ERR_INVALID_ARGUMENT", "rack")
+        self.check(lambda: libpool.rack("10ball"), "POOL_ERR_INVALID_ARGUMENT", "rack")
 
 
 class Reuse(unittest.TestCase):
@@ -265,6 +265,40 @@ class Reuse(unittest.TestCase):
             self.assertLessEqual(sim.time, 0.5)
             self.assertEqual(sim.end_time, 0.5)
             self.assertNotEqual(sim.state_at(sim.end_time), sim.state_at(sim.time))  # still moving
+
+
+class Tables(unittest.TestCase):
+    """Pockets "jaws" (docs/physics.md "Table geometry") through the binding: presets with their
+    balls, the snooker rack, the part of a cushion event, the thesis model by its enum value."""
+
+    def test_presets_and_parts(self):
+        with libpool.Sim(table="snooker") as sim:
+            self.assertEqual(sim.params.ball_radius, 0.02625)
+            self.assertEqual(sim.table.pockets, 1)  # POOL_POCKETS_JAWS
+            balls = sim.rack("snooker")
+            self.assertEqual(len(balls), 22)
+            sim.break_strike(6.0)
+            self.assertEqual(sim.run(), "rest")
+        self.assertEqual(libpool.params_preset("carom").ball_radius, 0.03075)
+        # A ball rolling steeply into the side pocket's east facing: a facing contact (part,
+        # and the pocket it belongs to), not a pocketing.
+        with libpool.Sim() as sim:
+            t, R = sim.table, sim.params.ball_radius
+            x0 = t.length / 2 + t.side_mouth / 2 - 0.03
+            v = 0.6
+            sim.add_ball(0, (x0 - 0.2, 0.2), (v, -v, 0.0), (v / R, v / R, 0.0))
+            sim.run()
+            first = [e for e in sim.events if e.type == "ball_cushion"][0]
+            self.assertIn(first.part, ("facing", "jaw"))
+            self.assertEqual(first.pocket, "s")
+            self.assertEqual(first.rail, "south")
+        # The thesis model: a cushion event names no part.
+        table = libpool.default_table()
+        table.pockets = 0
+        with libpool.Sim(table=table) as sim:
+            sim.add_ball(0, (1.0, 0.5), (0.0, -1.0, 0.0), (1.0 / sim.params.ball_radius, 0.0, 0.0))
+            sim.run()
+            self.assertIsNone([e for e in sim.events if e.type == "ball_cushion"][0].part)
 
 
 class Quartic(unittest.TestCase):

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""The optional models (issue 12) in the Python binding: chosen by name on a Sim (models=...),
-refused with the field named, read back by name; a Sim with models simulates exactly what pool-sim
-simulates for the same scenario; libpool.batch's layout parser reads "models" and the model
-parameters as pool-sim's parser does (same values, same messages).
+"""The models (issues 12 and 25) in the Python binding: chosen by name or model set on a Sim
+(models=...), refused with the field named, read back by name; the defaults are the measured laws
+and "thesis" the 2012 work's; a Sim with models simulates exactly what pool-sim simulates for the
+same scenario; libpool.batch's layout parser reads "models" and the model parameters as pool-sim's
+parser does (same values, same messages).
 
 Usage: test_models.py [--pool-sim PROG] [--work DIR] [unittest args]
 (LIBPOOL_PATH names the shared library; PYTHONPATH holds python/.)
@@ -20,7 +21,10 @@ from libpool import PoolError
 
 ARGS = None
 ALL = {"cushion": "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "endmass"}
-DEFAULTS = {"cushion": "petit", "ball_ball_friction": "constant", "squirt": "none"}
+DEFAULTS = {"cushion": "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "none"}
+THESIS = {"cushion": "petit", "ball_ball_friction": "constant", "squirt": "none"}
+# Each kind's model that is not the default one.
+OTHERS = {"cushion": "petit", "ball_ball_friction": "constant", "squirt": "endmass"}
 INVALID_ARGUMENT = -1
 
 # A cut into the rail: the cue ball struck with side hits ball 1, both reach cushions.
@@ -69,6 +73,20 @@ class Names(unittest.TestCase):
         self.assertEqual(m.cushion, 1)
         self.assertEqual(libpool.models_dict(libpool.default_sim_def().models), DEFAULTS)
 
+    def test_model_sets(self):
+        self.assertEqual(libpool.model_sets(), ["default", "thesis"])
+        self.assertEqual(libpool.models_dict(libpool.default_models()), DEFAULTS)
+        self.assertEqual(libpool.models_dict(libpool.thesis_models()), THESIS)
+        self.assertEqual(bytes(libpool.thesis_models()), bytes(libpool.Models()))  # all zero
+        self.assertEqual(libpool.models_dict(libpool.make_models("thesis")), THESIS)
+        self.assertEqual(libpool.models_dict(libpool.make_models("default")), DEFAULTS)
+        self.assertEqual(libpool.models_dict(libpool.make_models({"set": "thesis", "squirt": "endmass"})),
+                         dict(THESIS, squirt="endmass"))
+        self.assertEqual(libpool.models_dict(libpool.make_models({"set": "thesis"}, cushion="mathavan2010")),
+                         dict(THESIS, cushion="mathavan2010"))
+        self.assertEqual(libpool.models_dict(libpool.make_models({"ball_ball_friction": "constant"})),
+                         dict(DEFAULTS, ball_ball_friction="constant"))
+
     def test_refusals_name_the_field(self):
         cases = [
             ({"cushion": "foo"}, 'models.cushion: unknown model "foo" (petit, mathavan2010)'),
@@ -77,6 +95,10 @@ class Names(unittest.TestCase):
              'models.ball_ball_friction: unknown model "1" (constant, alciatore)'),
             ({"cushion": "petit\0mathavan2010"}, "models.cushion: unknown model"),
             ({"swerve": "none"}, "models.swerve: unknown field"),
+            ("mathavan2010", 'models: unknown model set "mathavan2010" (default, thesis)'),
+            ("thesis\0", 'models: unknown model set'),
+            ({"set": "2012"}, 'models.set: unknown model set "2012" (default, thesis)'),
+            ({"set": 2012}, "models.set: must be a string"),
         ]
         for models, message in cases:
             with self.subTest(models=models):
@@ -85,7 +107,7 @@ class Names(unittest.TestCase):
                 self.assertEqual(cm.exception.code, INVALID_ARGUMENT)
                 self.assertTrue(cm.exception.message.startswith(message), cm.exception.message)
         with self.assertRaises(TypeError):
-            libpool.Sim(models="mathavan2010")
+            libpool.Sim(models=["thesis"])
 
 
 class OnTheSim(unittest.TestCase):
@@ -102,6 +124,8 @@ class OnTheSim(unittest.TestCase):
             self.assertEqual(sim.models, DEFAULTS)
         with libpool.Sim() as sim:
             self.assertEqual(sim.models, DEFAULTS)
+            sim.reset(models="thesis")
+            self.assertEqual(sim.models, THESIS)
 
     def test_model_parameters_are_params(self):
         p = libpool.default_params()
@@ -120,9 +144,10 @@ class OnTheSim(unittest.TestCase):
             self.skipTest("no --pool-sim")
         params = libpool.default_params()
         params.throw_a, params.cue_end_mass = 0.012, 0.09
-        for models in (ALL, {"cushion": "mathavan2010"}, {"squirt": "endmass"}, {}):
+        for k, models in enumerate((ALL, {"cushion": "petit"}, {"squirt": "endmass"}, {}, "thesis",
+                                    {"set": "thesis", "squirt": "endmass"})):
             with self.subTest(models=models):
-                path = os.path.join(ARGS.work, "models_%d.json" % len(models))
+                path = os.path.join(ARGS.work, "models_%d.json" % k)
                 with open(path, "w") as f:
                     json.dump(scenario(models, {"throw_a": 0.012, "cue_end_mass": 0.09}), f)
                 out = subprocess.run([ARGS.pool_sim, path], check=True, capture_output=True,
@@ -135,7 +160,7 @@ class OnTheSim(unittest.TestCase):
                     self.assertEqual([list(b.pos) for b in e.after], [b["pos"] for b in w["after"]])
                     self.assertEqual([list(b.vel) for b in e.after], [b["vel"] for b in w["after"]])
                 self.assertEqual([list(b.pos) for b in final], [b["pos"] for b in want["final"]])
-                self.assertEqual(want.get("models", DEFAULTS), dict(DEFAULTS, **models))
+                self.assertEqual(want["models"], libpool.models_dict(libpool.make_models(models)))
 
 
 class ModelsMatter(unittest.TestCase):
@@ -143,10 +168,12 @@ class ModelsMatter(unittest.TestCase):
         """Each kind, chosen alone, changes this shot's final positions (the cut with side goes
         into cushions): the binding did not drop it on the way to the library."""
         _, default = run_sim({})
-        for kind, name in ALL.items():
+        for kind, name in OTHERS.items():
             with self.subTest(kind=kind):
                 _, final = run_sim({kind: name})
                 self.assertNotEqual([b.pos for b in final], [b.pos for b in default])
+        _, thesis = run_sim("thesis")
+        self.assertNotEqual([b.pos for b in thesis], [b.pos for b in default])
 
 
 class BatchLayout(unittest.TestCase):
@@ -166,10 +193,15 @@ class BatchLayout(unittest.TestCase):
         self.assertEqual(layout.sim_def.params.cue_end_mass, 0.11)
         self.assertEqual(libpool.models_dict(batch.load_layout(scenario()).sim_def.models),
                          DEFAULTS)
+        self.assertEqual(libpool.models_dict(batch.load_layout(scenario("thesis")).sim_def.models),
+                         THESIS)
+        layout = batch.load_layout(scenario({"set": "thesis", "cushion": "mathavan2010"}))
+        self.assertEqual(libpool.models_dict(layout.sim_def.models), dict(THESIS, cushion="mathavan2010"))
 
     def test_layout_refusals_are_pool_sims(self):
         import libpool.batch as batch
-        bad = [({"cushion": "foo"}, None), ({"squirt": 3}, None), ("petit", None),
+        bad = [({"cushion": "foo"}, None), ({"squirt": 3}, None), ("petit", None), (["thesis"], None),
+               ({"set": "x"}, None), ({"set": None}, None),
                ({"cushions": "petit"}, None), ({"": "x"}, None), (None, {"throw_q": 1.0}),
                (None, {"cue_end_mass": -1.0}), (None, {"throw_b": "big"})]
         for models, params in bad:

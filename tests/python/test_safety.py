@@ -375,7 +375,7 @@ class Close(unittest.TestCase):
         try:
             # A Sim whose __init__ raised is finalized without error.
             for bad in (dict(max_time=float("nan")), dict(table="wpa-9ft\x00"),
-                        dict(table="snooker")):
+                        dict(table="billiards")):
                 with self.assertRaises((PoolError, ValueError)):
                     libpool.Sim(**bad)
             # Sims in reference cycles, dropped from several threads at once.

@@ -17,7 +17,8 @@ Oracles, in order of independence:
 - Wilson's interval for k = n worked by hand: [n / (n + z^2), 1];
 - the samples are pool-batch's shots: the per-sample strikes fed to pool-batch give the same
   final positions, digit for digit;
-- spin-blind is the scenario with mu_ball = mu_cushion = 0 (written into the file instead);
+- spin-blind is the scenario with every ball-ball and ball-cushion friction 0 (written into the
+  file instead);
 - reproducibility: same seed, byte-identical files on 1 and 2 threads; another seed differs.
 Bad options exit 2 naming the option or field. Every subprocess has a timeout.
 """
@@ -254,7 +255,10 @@ class ModelSets(unittest.TestCase):
         balls = [{"id": 0, "pos": [0.635, 0.635]}, {"id": 1, "pos": [1.27, 0.7]}]
         strike = {"ball": 0, "speed": 2.5, "phi": 3, "theta": 0, "a": 0.005, "b": 0.01}
         shot = write_scenario("shot.json", balls, strike)
-        blind = write_scenario("blind.json", balls, strike, params={"mu_ball": 0, "mu_cushion": 0})
+        # every friction of the ball-ball and ball-cushion laws, the default ones and thesis's
+        blind = write_scenario("blind.json", balls, strike,
+                               params={"mu_ball": 0, "throw_a": 0, "throw_b": 0, "mu_cushion": 0,
+                                       "mu_cushion_mathavan": 0})
         sd = ["--sd", "speed=0.05,phi=0.5,a=0.002,b=0.002", "-n", "400", "--balls", "0,1"]
         sens_ok(self, shot, *sd, "--models", "default,spin-blind", "-o", work("pair"))
         sens_ok(self, blind, *sd, "-o", work("blind_out"))

@@ -18,6 +18,7 @@ import select
 import shutil
 import stat
 import subprocess
+import tempfile
 import sys
 import threading
 import time
@@ -394,7 +395,7 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("huge_pos", with_(ball(1, pos=[1e200, 0.5])), "balls[1].pos[0]"),
             ("table_number", with_(lambda d: d.update(table=9)), "table: must be a preset name"),
             ("table_string", with_(lambda d: d.update(table="wpa-10ft")), "table: unknown preset"),
-            ("preset", with_(lambda d: d.update(table={"preset": "snooker"})), "table.preset"),
+            ("preset", with_(lambda d: d.update(table={"preset": "billiards"})), "table.preset"),
             ("table_width", with_(lambda d: d.update(table={"width": -1})), "table.width"),
             ("airborne_type", with_(lambda d: d.update(options={"airborne": 1})), "options.airborne"),
             ("max_time", with_(lambda d: d.update(options={"max_time": 0})), "options.max_time"),
@@ -580,7 +581,7 @@ class TestPoolSim(unittest.TestCase, ResultChecks):
             ("bidi_table", doc_with(table={"w\u202eidth": 1}), "pool-sim: table.w\\u202eidth: unknown field\n"),
             ("c1_option", doc_with(options={"x\u009by": 1}), "pool-sim: options.x\\u009by: unknown field\n"),
             ("preset", doc_with(table={"preset": "\x1b[2Jwpa"}),
-             'pool-sim: table.preset: unknown preset "\\u001b[2Jwpa" (wpa-9ft, wpa-8ft, wpa-7ft)\n'),
+             'pool-sim: table.preset: unknown preset "\\u001b[2Jwpa" (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)\n'),
             # jansson refuses a NUL in a key; its message quotes the source text, escapes and all.
             ("nul_key", doc_with(params={"a\u0000b": 1}), "pool-sim: (document): malformed JSON at line 1"),
             # Raw control bytes in a string are not JSON: jansson's quote of them is escaped.
@@ -704,6 +705,41 @@ class TestRack(unittest.TestCase, ResultChecks):
             self.assertIn(expect, r.stderr, args)
             self.assertLess(len(r.stderr), 400, args)
 
+    def test_snooker_and_carom(self):
+        # Snooker: 15 reds behind the pink, the colours on the WPBSA spots (ids 20 + value), the
+        # cue ball in the D; the snooker table's own balls; the break goes through pool-sim.
+        doc, text = self.rack("snooker")
+        self.assertEqual(doc["table"], {"preset": "snooker"})
+        ids = sorted(b["id"] for b in doc["balls"])
+        self.assertEqual(ids, [0] + list(range(1, 16)) + list(range(22, 28)))
+        pos = {b["id"]: b["pos"] for b in doc["balls"]}
+        L, W, R = 3.569, 1.778, 0.02625
+        self.assertAlmostEqual(pos[27][0], L - 0.324, places=12)       # black on its spot
+        self.assertAlmostEqual(pos[26][0], 0.75 * L, places=12)        # pink: the pyramid spot
+        self.assertAlmostEqual(pos[25][0], 0.5 * L, places=12)         # blue: the centre
+        self.assertAlmostEqual(pos[22][1], W / 2 - 0.292, places=12)   # yellow: the D's corner
+        self.assertGreater(min(pos[k][0] for k in range(1, 16)), pos[26][0] + 2 * R)
+        self.assertEqual(run([ARGS.pool_rack, "--table", "snooker"]).stdout, text)
+        res = self.sim_result(text)
+        self.assertEqual(res["stats"]["stop_reason"], "rest")
+        self.assertEqual(res["ball_radius"], R)
+        # Carom: three balls, red on the foot spot, the cue ball beside the yellow.
+        doc, text = self.rack("carom")
+        self.assertEqual(sorted(b["id"] for b in doc["balls"]), [0, 1, 2])
+        res = self.sim_result(text)
+        self.assertEqual(res["table"]["pockets"], "none")
+        parts = {e.get("part") for e in res["events"] if e["type"] == "ball_cushion"}
+        self.assertLessEqual(parts, {"nose"})
+
+    def sim_result(self, scenario_text):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "s.json")
+            with open(path, "wb") as f:
+                f.write(scenario_text)
+            r = run([ARGS.pool_sim, path])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return json.loads(r.stdout)
+
     def test_racks_are_tight_and_on_the_table(self):
         for kind, n in (("8ball", 16), ("9ball", 10)):
             doc, _ = self.rack(kind, "--gap", "0")
@@ -744,9 +780,10 @@ class TestRack(unittest.TestCase, ResultChecks):
             self.assertEqual(len(json.load(f)["balls"]), 10)
 
 
-# The last pool-plot before the airborne side panel: without airborne data the picture must stay
-# its very bytes (test_planar_picture_unchanged).
-PLANAR_REFERENCE = "5f22ca5680a467e16404b488c3d1048a9fea3ce0"
+# The pool-plot whose planar pictures are the reference: without airborne data the picture must
+# stay its very bytes (test_planar_picture_unchanged). It was the last one before the airborne
+# side panel (5f22ca5) until the tables' pockets were drawn to scale (issue 20, f9beb63).
+PLANAR_REFERENCE = "f9beb63c6f0a829fc6aecf6cee46737e925bac2f"
 TABLE_9FT = {"length": 2.54, "width": 1.27, "cushion_height": 0.03629, "corner_mouth": 0.1143,
              "side_mouth": 0.127}
 

@@ -1,7 +1,8 @@
-"""The optional models (issue 12) through the commands: pool-sim, pool-batch and pool-rack refuse
-bad "models" with exit status 2 and the field named, write nothing then; pool-rack --model writes
-them into a scenario, pool-sim's result carries them (so they round-trip), and pool-batch runs
-every shot of a layout with the layout's models (its rows are pool-sim's results).
+"""The models (issues 12 and 25) through the commands: pool-sim, pool-batch and pool-rack refuse
+bad "models" with exit status 2 and the field named, write nothing then; pool-rack --model and
+--models write them into a scenario, pool-sim's result always carries them (so they round-trip),
+and pool-batch runs every shot of a layout with the layout's models, or with --models (its rows
+are pool-sim's results).
 
 Usage: python test_models_commands.py --pool-sim PATH --pool-rack PATH [--pool-batch PATH]
                                       --work DIR [unittest arguments]
@@ -15,7 +16,10 @@ import unittest
 
 ARGS = None
 ALL_MODELS = {"cushion": "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "endmass"}
-DEFAULTS = {"cushion": "petit", "ball_ball_friction": "constant", "squirt": "none"}
+DEFAULTS = {"cushion": "mathavan2010", "ball_ball_friction": "alciatore", "squirt": "none"}
+THESIS = {"cushion": "petit", "ball_ball_friction": "constant", "squirt": "none"}
+SPEC_NAMES = ("no model set (default, thesis) nor model (petit, mathavan2010, constant, alciatore, "
+              "none, endmass)")
 
 
 def run(cmd, timeout=120):
@@ -49,7 +53,9 @@ BAD = [
     ({"squirt": "lots"}, None, 'models.squirt: unknown model "lots" (none, endmass)'),
     ({"swerve": "none"}, None, "models.swerve: unknown field"),
     ({"cushion": 2}, None, "models.cushion: must be a string"),
-    ("petit", None, "models: must be an object"),
+    ("petit", None, 'models: unknown model set "petit" (default, thesis)'),
+    (["thesis"], None, "models: must be a model set name or an object"),
+    ({"set": "2012"}, None, 'models.set: unknown model set "2012" (default, thesis)'),
     (None, {"throw_d": 1.0}, "params.throw_d: unknown field"),
     (None, {"cue_end_mass": 0.0}, "params.cue_end_mass"),
     (None, {"throw_b": -0.1}, "params.throw_b"),
@@ -86,6 +92,9 @@ class Commands(unittest.TestCase):
                                        "cushion, ball_ball_friction, squirt)"),
             (["--model", "mathavan2010"], "--model: 'mathavan2010' is not KIND=NAME"),
             (["--model"], "option --model needs a value"),
+            (["--models", "rubber"], f"--models: 'rubber' is {SPEC_NAMES}"),
+            (["--models", "thesis+"], f"--models: '' is {SPEC_NAMES}"),
+            (["--models"], "option --models needs a value"),
         ]
         for extra, message in cases:
             r = run([ARGS.pool_rack, "8ball", *extra])
@@ -93,6 +102,7 @@ class Commands(unittest.TestCase):
             self.assertTrue(r.stderr.startswith(f"pool-rack: {message}"), r.stderr)
             self.assertEqual(r.stdout, "")
         self.assertIn("--model KIND=NAME", run([ARGS.pool_rack, "--help"]).stdout)
+        self.assertIn("--models SET", run([ARGS.pool_rack, "--help"]).stdout)
 
     def test_models_round_trip_through_rack_sim_and_result(self):
         rack = os.path.join(ARGS.work, "rack_models.json")
@@ -105,9 +115,16 @@ class Commands(unittest.TestCase):
         # The later --model of a kind wins; the default names are written as such.
         r = run([ARGS.pool_rack, "9ball", "--model", "cushion=mathavan2010", "--model",
                  "cushion=petit", "--model", "squirt=endmass"])
-        self.assertEqual(json.loads(r.stdout)["models"], dict(DEFAULTS, squirt="endmass"))
+        self.assertEqual(json.loads(r.stdout)["models"], dict(DEFAULTS, cushion="petit", squirt="endmass"))
         # Without --model the scenario has no "models" (the defaults).
         self.assertNotIn("models", json.loads(run([ARGS.pool_rack, "9ball"]).stdout))
+        # --models: a set, then --model kinds on it.
+        r = run([ARGS.pool_rack, "9ball", "--models", "thesis"])
+        self.assertEqual(json.loads(r.stdout)["models"], THESIS)
+        r = run([ARGS.pool_rack, "9ball", "--models", "thesis", "--model", "squirt=endmass"])
+        self.assertEqual(json.loads(r.stdout)["models"], dict(THESIS, squirt="endmass"))
+        r = run([ARGS.pool_rack, "9ball", "--models", "thesis+mathavan2010"])
+        self.assertEqual(json.loads(r.stdout)["models"], dict(THESIS, cushion="mathavan2010"))
 
         out = os.path.join(ARGS.work, "rack_models.result.json")
         r = run([ARGS.pool_sim, rack, "-o", out])
@@ -123,11 +140,20 @@ class Commands(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         with open(out2) as f:
             self.assertEqual(json.load(f), result)
-        # A default shot's result has no "models" (and is what it was before models existed).
+        # Every result says which laws made it: a default shot's, and a "thesis" one's.
         default_out = os.path.join(ARGS.work, "default.result.json")
         run([ARGS.pool_sim, write("default.json", scenario()), "-o", default_out])
         with open(default_out) as f:
-            self.assertNotIn("models", json.load(f))
+            default_result = json.load(f)
+        self.assertEqual(default_result["models"], DEFAULTS)
+        thesis_out = os.path.join(ARGS.work, "thesis.result.json")
+        run([ARGS.pool_sim, write("thesis.json", scenario("thesis")), "-o", thesis_out])
+        with open(thesis_out) as f:
+            thesis_result = json.load(f)
+        self.assertEqual(thesis_result["models"], THESIS)
+        # The laws differ on this rail shot: the final positions do too.
+        self.assertNotEqual([b["pos"] for b in thesis_result["final"]],
+                            [b["pos"] for b in default_result["final"]])
 
     def test_pool_batch_rows_are_pool_sims_with_the_layouts_models(self):
         if not ARGS.pool_batch:
@@ -154,6 +180,33 @@ class Commands(unittest.TestCase):
             self.assertEqual(row["end_time"], want["stats"]["end_time"], f"shot {k}")
             self.assertEqual([b["pos"] for b in row["final"]], [b["pos"] for b in want["final"]],
                              f"shot {k}")
+
+
+    def test_pool_batch_models_option(self):
+        """--models replaces the layout's laws (applied to them): the rows are pool-sim's on the
+        layout with those models; a bad value is refused before anything runs."""
+        if not ARGS.pool_batch:
+            self.skipTest("no pool-batch")
+        layout = scenario(ALL_MODELS)
+        path = write("batch_models_layout.json", layout)
+        for spec, models in (("thesis", THESIS), ("thesis+endmass", dict(THESIS, squirt="endmass")),
+                             ("default", DEFAULTS)):
+            r = run([ARGS.pool_batch, path, "--grid", "speed=2.5", "--models", spec, "--format",
+                     "jsonl", "--no-progress"])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            row = json.loads(r.stdout)
+            out = os.path.join(ARGS.work, "batch_models_want.result.json")
+            r = run([ARGS.pool_sim, write("batch_models_want.json", dict(layout, models=models)),
+                     "-o", out])
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out) as f:
+                want = json.load(f)
+            self.assertEqual(row["events"], want["stats"]["events"], spec)
+            self.assertEqual([b["pos"] for b in row["final"]], [b["pos"] for b in want["final"]], spec)
+        r = run([ARGS.pool_batch, path, "--grid", "speed=2.5", "--models", "thesis+rubber"])
+        self.assertEqual(r.returncode, 2)
+        self.assertTrue(r.stderr.startswith(f"pool-batch: --models: 'rubber' is {SPEC_NAMES}"), r.stderr)
+        self.assertEqual(r.stdout, "")
 
 
 def main():

@@ -96,6 +96,55 @@ static void test_fields_are_read(void **state) {
 
 // options.airborne = true: 3D positions and velocities are read and checked by the parser itself
 // (the library refuses airborne simulations until it implements them; setup says so).
+// The table's pocket model and geometry (docs/interfaces.md), a preset's balls as the params'
+// defaults, and refusals naming the field.
+static void test_table_geometry_is_read(void **state) {
+	(void)state;
+	pool_scenario s;
+	char err[256];
+	const char *doc = "{\"format\": \"libpool-scenario/1\","
+	                  " \"table\": {\"preset\": \"wpa-8ft\", \"corner_cut_angle\": 143, \"side_jaw_radius\": 0.01,"
+	                  " \"corner_shelf\": 0.03, \"side_hole_radius\": 0.07},"
+	                  " \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}";
+	if (parse(doc, &s, err, sizeof err) != 0)
+		fail_msg("%s", err);
+	assert_int_equal(s.def.table.pockets, POOL_POCKETS_JAWS);
+	assert_true(fabs(s.def.table.corner_cut_angle - 143 * 3.14159265358979323846 / 180) < 1e-15);
+	assert_true(s.def.table.side_jaw_radius == 0.01 && s.def.table.corner_shelf == 0.03 && s.def.table.side_hole_radius == 0.07);
+	pool_scenario_free(&s);
+	// The thesis model by name; snooker's balls come with its table, and params override them.
+	const char *thesis = "{\"format\": \"libpool-scenario/1\", \"table\": {\"pockets\": \"mouth_lines\"},"
+	                     " \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}";
+	if (parse(thesis, &s, err, sizeof err) != 0)
+		fail_msg("%s", err);
+	assert_int_equal(s.def.table.pockets, POOL_POCKETS_MOUTH_LINES);
+	pool_scenario_free(&s);
+	const char *snooker = "{\"format\": \"libpool-scenario/1\", \"table\": {\"preset\": \"snooker\"},"
+	                      " \"params\": {\"mu_ball\": 0.05}, \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}";
+	if (parse(snooker, &s, err, sizeof err) != 0)
+		fail_msg("%s", err);
+	assert_true(s.def.params.ball_radius == 0.02625 && s.def.params.mu_ball == 0.05 && s.def.table.length == 3.569);
+	assert_true(s.balls[0].pos.z == 0.02625);
+	pool_scenario_free(&s);
+	const struct {
+		const char *table, *message;
+	} bad[] = {
+		{"{\"pockets\": \"holes\"}", "table.pockets: must be \"jaws\", \"mouth_lines\" or \"none\""},
+		{"{\"side_cut_angle\": 190}", "table.side_cut_angle: must be between 0 and 180 degrees"},
+		{"{\"corner_jaw_radius\": 0.5}", "table.corner_jaw_radius:"},
+		{"{\"side_mouth\": 0.05}", "table.side_mouth: 0.05 m is narrower than a ball"},
+		{"{\"corner_hole_radius\": \"big\"}", "table.corner_hole_radius: must be a number"},
+	};
+	for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
+		char text[512];
+		snprintf(text, sizeof text, "{\"format\": \"libpool-scenario/1\", \"table\": %s, \"balls\": [{\"id\": 0, \"pos\": [0.5, 0.5]}]}",
+		         bad[k].table);
+		assert_int_equal(parse(text, &s, err, sizeof err), -1);
+		if (strncmp(err, bad[k].message, strlen(bad[k].message)) != 0)
+			fail_msg("%s: got \"%s\"", bad[k].table, err);
+	}
+}
+
 static void test_airborne_balls_are_read(void **state) {
 	(void)state;
 	pool_scenario s;
@@ -339,7 +388,7 @@ static void test_echoed_input_is_escaped(void **state) {
 		{"{\"format\": \"libpool-scenario/1\", \"params\": {\"x\\ny\": 1}, \"balls\": []}",
 		 "params.x\\u000ay: unknown field"},
 		{"{\"format\": \"libpool-scenario/1\", \"table\": {\"preset\": \"\\u001b[2J\"}, \"balls\": []}",
-		 "table.preset: unknown preset \"\\u001b[2J\" (wpa-9ft, wpa-8ft, wpa-7ft)"},
+		 "table.preset: unknown preset \"\\u001b[2J\" (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)"},
 		{"{\"format\": \"libpool-scenario/1\", \"\x1b[2J\": 1}",
 		 "(document): malformed JSON at line 1, column 34: control character 0x1b near '\"'"},
 	};
@@ -515,6 +564,7 @@ int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_minimal_scenario_takes_defaults),
 		cmocka_unit_test(test_fields_are_read),
+		cmocka_unit_test(test_table_geometry_is_read),
 		cmocka_unit_test(test_airborne_balls_are_read),
 		cmocka_unit_test(test_airborne_refusals_name_the_field),
 		cmocka_unit_test(test_errors_name_the_field),

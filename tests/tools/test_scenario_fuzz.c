@@ -584,7 +584,7 @@ static bool is_path_char(char c) { return isalnum((unsigned char)c) || c == '_';
 // "root", "root.field", "balls[3].pos[1]", ...: a known root then fields and indices.
 static bool starts_with_field_path(const char *m) {
 	static const char *const roots[] = {"format", "name", "description", "table", "params",
-	                                    "balls", "strike", "options", "(document)"};
+	                                    "balls", "strike", "options", "models", "(document)"};
 	for (size_t r = 0; r < sizeof roots / sizeof roots[0]; ++r) {
 		size_t n = strlen(roots[r]);
 		if (strncmp(m, roots[r], n) != 0)

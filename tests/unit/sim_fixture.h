@@ -5,6 +5,14 @@
 
 #include "pool/pool.h"
 
+/// The default def with the "thesis" model set: for the tests whose oracles are the 2012 work's
+/// laws (Petit's cushion impulse, a constant mu_ball; docs/validation.md).
+static inline pool_sim_def thesis_sim_def(void) {
+	pool_sim_def def = pool_default_sim_def();
+	def.models = pool_thesis_models();
+	return def;
+}
+
 static inline pool_sim *make_sim(const pool_sim_def *def) {
 	pool_sim *sim = NULL;
 	pool_error err;

@@ -1,4 +1,4 @@
-// The optional models of issue 12 (docs/physics.md "Optional models") against published figures and
+// The optional models of issue 12 (docs/physics.md "Models") against published figures and
 // independent calculations: Mathavan 2010's cushion, Alciatore's speed-dependent ball-ball
 // friction (throw, TP A.14) and the cue's end-mass squirt (TP A.31); invariants of every model
 // (energy never increases, momentum in ball-ball events, random shots with every model on).
@@ -16,6 +16,8 @@
 #include <cmocka.h>
 
 #include "sim_fixture.h"
+
+#include "../soak/link_energy.h"
 
 #include "ball_friction.h"
 #include "cushion_mathavan.h"
@@ -37,6 +39,13 @@
 /// relative to the impact speed, and rebound angle (cushion_mathavan.h states these).
 #define MATHAVAN_CONVERGENCE 1e-3
 #define MATHAVAN_CONVERGENCE_DEG 0.05
+/// POOL_MATHAVAN_STEPS against a 64 times finer integration over random impacts (0.1-8 m/s, any
+/// incidence, spin and side): the outgoing velocities' largest difference, relative to the
+/// impact's largest velocity or surface speed, at worst and at the median. The scheme is of the
+/// second order while the contacts slide and of the first order where one changes between stick
+/// and slip, which sets the worst case (7.4e-3 measured over 2,000 impacts; median 2.3e-6).
+#define MATHAVAN_RANDOM_WORST 1e-2
+#define MATHAVAN_RANDOM_MEDIAN 1e-5
 /// Energy may not grow by more than rounding (relative).
 #define ENERGY_ROUNDING 1e-12
 /// TP A.14's throw values are printed to 0.1 degree: read to one unit of that digit (the medium
@@ -57,8 +66,8 @@ static pool_params mathavan_params(void) {
 	pool_params p = pool_default_params();
 	p.ball_mass = 0.1406;
 	p.ball_radius = 0.02625;
-	p.e_cushion = 0.98;
-	p.mu_cushion = 0.14;
+	p.e_cushion_mathavan = 0.98;
+	p.mu_cushion_mathavan = 0.14;
 	p.mu_table = 0.212;
 	return p;
 }
@@ -111,6 +120,18 @@ static void test_mathavan_perpendicular(void **state) {
 	}
 }
 
+// The default parameters carry the paper's fit (issue 25): with only the paper's ball, cloth and
+// nose height set, the default e_cushion_mathavan and mu_cushion_mathavan give its 0.91.
+static void test_mathavan_defaults_are_the_fit(void **state) {
+	(void)state;
+	pool_params p = pool_default_params();
+	p.ball_mass = 0.1406;
+	p.ball_radius = 0.02625;
+	p.mu_table = 0.212;
+	const rebound rolling = cushion_impact(&p, 1.0, 0.0, 1.0, 0.0, POOL_MATHAVAN_STEPS);
+	assert_true(fabs(rolling.ratio - 0.91) <= MATHAVAN_RATIO_TOLERANCE);
+}
+
 // Issue 12, quoting Mathavan 2010's model: a rolling ball at 1 m/s, 45 degrees in, leaves at
 // 52.7 degrees from the rail (Petit's law: 41.9). Running side leaves flatter (closer to the
 // rail), check side steeper (the paper's oblique-impact figures).
@@ -135,10 +156,10 @@ static void test_mathavan_oblique(void **state) {
 static void test_mathavan_frictionless(void **state) {
 	(void)state;
 	pool_params p = mathavan_params();
-	p.mu_cushion = 0.0;
+	p.mu_cushion_mathavan = 0.0;
 	p.mu_table = 0.0;
 	for (double e = 0.0; e <= 1.0; e += 0.25) {
-		p.e_cushion = e;
+		p.e_cushion_mathavan = e;
 		const rebound r = cushion_impact(&p, 1.3, 30.0, 0.6, 0.7, POOL_MATHAVAN_STEPS);
 		assert_true(fabs(r.after.vel.y + e * 1.3 * cos(30.0 * DEG)) <= 1e-12);
 		assert_true(fabs(r.after.vel.x - 1.3 * sin(30.0 * DEG)) <= 1e-12);
@@ -166,6 +187,55 @@ static void test_mathavan_convergence_and_energy(void **state) {
 	       POOL_MATHAVAN_STEPS, worst_v, worst_deg);
 	assert_true(worst_v <= MATHAVAN_CONVERGENCE);
 	assert_true(worst_deg <= MATHAVAN_CONVERGENCE_DEG);
+}
+
+static int compare_doubles(const void *a, const void *b) {
+	const double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+// The stated accuracy over random impacts, against the same equations integrated 64 times finer;
+// energy never grows.
+static void test_mathavan_random_impacts(void **state) {
+	(void)state;
+	const pool_params p = pool_default_params();
+	const double R = p.ball_radius, sin_t = (0.03629 - R) / R;
+	const pool_vec3 n = pool_v3(0.0, -sqrt(1.0 - sin_t * sin_t), -sin_t);
+	enum { IMPACTS = 1000 };
+	static double diff[IMPACTS];
+	uint64_t seed = 0x9E3779B97F4A7C15ull;
+	for (int i = 0; i < IMPACTS; ++i) {
+		double u[5];
+		for (int k = 0; k < 5; ++k) {
+			seed ^= seed << 13;
+			seed ^= seed >> 7;
+			seed ^= seed << 17;
+			u[k] = (double)(seed >> 11) * (1.0 / 9007199254740992.0);
+		}
+		const double V = 0.1 + 7.9 * u[0], a = (178.0 * u[1] - 89.0) * DEG;
+		const double top = u[2] < 0.6 ? 4.0 * u[2] / 0.6 - 2.0 : u[2] < 0.8 ? 1.0 : 0.0; // any; rolling; stun
+		pool_ball_state b;
+		memset(&b, 0, sizeof b);
+		b.pos = pool_v3(1.0, 1.0, R);
+		b.vel = pool_v3(V * sin(a), V * cos(a), 0.0);
+		b.omega = pool_v3(-top * b.vel.y / R, top * b.vel.x / R, (6.0 * u[3] - 3.0) * V / R);
+		pool_ball_state coarse = b, fine = b;
+		assert_int_equal(pool_cushion_mathavan(&coarse, &p, n, POOL_MATHAVAN_STEPS), POOL_MATHAVAN_RESOLVED);
+		assert_int_equal(pool_cushion_mathavan(&fine, &p, n, 64 * POOL_MATHAVAN_STEPS), POOL_MATHAVAN_RESOLVED);
+		double scale = 0.0, d = 0.0;
+		for (int j = 0; j < 3; ++j) {
+			scale = fmax(scale, fmax(fabs((&b.vel.x)[j]), R * fabs((&b.omega.x)[j])));
+			d = fmax(d, fmax(fabs((&coarse.vel.x)[j] - (&fine.vel.x)[j]), R * fabs((&coarse.omega.x)[j] - (&fine.omega.x)[j])));
+		}
+		diff[i] = d / scale;
+		assert_true(pool_motion_energy(&p, &coarse) <= pool_motion_energy(&p, &b) * (1.0 + ENERGY_ROUNDING));
+	}
+	qsort(diff, IMPACTS, sizeof diff[0], compare_doubles);
+	printf("mathavan2010 at %d steps vs 64x over %d random impacts: median %.3g, p99 %.3g, worst %.3g of the speed "
+	       "scale\n",
+	       POOL_MATHAVAN_STEPS, IMPACTS, diff[IMPACTS / 2], diff[IMPACTS * 99 / 100], diff[IMPACTS - 1]);
+	assert_true(diff[IMPACTS - 1] <= MATHAVAN_RANDOM_WORST);
+	assert_true(diff[IMPACTS / 2] <= MATHAVAN_RANDOM_MEDIAN);
 }
 
 // A ball moving away from the nose is left alone; the library's default parameters (mu 0.2 at
@@ -197,8 +267,8 @@ static double sim_rail_rebound(pool_cushion_model model, bool airborne, pool_mot
 	pool_sim_def def = pool_default_sim_def();
 	def.models.cushion = model;
 	def.airborne = airborne;
-	def.params.e_cushion = 0.98; // Mathavan 2010's cushion and cloth
-	def.params.mu_cushion = 0.14;
+	def.params.e_cushion = def.params.e_cushion_mathavan = 0.98; // Mathavan 2010's cushion and cloth, both laws
+	def.params.mu_cushion = def.params.mu_cushion_mathavan = 0.14;
 	def.params.mu_table = 0.212;
 	pool_sim *sim;
 	assert_int_equal(pool_sim_create(&def, &sim, NULL), POOL_OK);
@@ -313,7 +383,7 @@ static void test_throw_tp_a14(void **state) {
 // The friction is the fit at the contact's slip speed, whatever the balls' spins.
 static void test_ball_friction_law(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = thesis_sim_def(); // the constant law first
 	pool_ball_state a, b;
 	memset(&a, 0, sizeof a);
 	memset(&b, 0, sizeof b);
@@ -404,10 +474,27 @@ static void test_names_and_validation(void **state) {
 	assert_int_equal(pool_squirt_model_from_name("endmass"), POOL_SQUIRT_ENDMASS);
 	assert_int_equal(pool_cushion_model_from_name("foo"), -1);
 	assert_int_equal(pool_squirt_model_from_name(NULL), -1);
+	// The defaults are the measured laws (issue 25); "thesis" is the 2012 work's, all zero.
 	pool_sim_def def = pool_default_sim_def();
-	assert_int_equal(def.models.cushion, 0);
-	assert_int_equal(def.models.ball_ball_friction, 0);
-	assert_int_equal(def.models.squirt, 0);
+	assert_int_equal(def.models.cushion, POOL_CUSHION_MATHAVAN2010);
+	assert_int_equal(def.models.ball_ball_friction, POOL_BALL_FRICTION_ALCIATORE);
+	assert_int_equal(def.models.squirt, POOL_SQUIRT_NONE);
+	const pool_models zero = {0}, thesis = pool_thesis_models(), measured = pool_default_models();
+	assert_memory_equal(&thesis, &zero, sizeof zero);
+	assert_memory_equal(&measured, &def.models, sizeof zero);
+	pool_models m = zero;
+	assert_int_equal(pool_models_preset("default", &m), POOL_OK);
+	assert_memory_equal(&m, &measured, sizeof m);
+	assert_int_equal(pool_models_preset("thesis", &m), POOL_OK);
+	assert_memory_equal(&m, &zero, sizeof m);
+	assert_int_equal(pool_models_preset("Thesis", &m), POOL_ERR_UNKNOWN_PRESET);
+	assert_int_equal(pool_models_preset(NULL, &m), POOL_ERR_INVALID_ARGUMENT);
+	assert_int_equal(pool_models_preset("thesis", NULL), POOL_ERR_INVALID_ARGUMENT);
+	assert_memory_equal(&m, &zero, sizeof m);
+	assert_string_equal(pool_models_preset_name(0), "default");
+	assert_string_equal(pool_models_preset_name(1), "thesis");
+	assert_null(pool_models_preset_name(2));
+	assert_null(pool_models_preset_name(-1));
 	pool_sim *sim = NULL;
 	pool_error err;
 	def.models.cushion = (pool_cushion_model)2;
@@ -457,8 +544,9 @@ static double urand(void) {
 	return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
 }
 
-/// J: what a LINK step may add (its LCP solved to Lemke's residual), as in test_random_shots.
-#define LINK_ENERGY_TOLERANCE 1e-9
+/// J: what a LINK event may add (its LCP solved to Lemke's residual), as in test_random_shots: a
+/// step where it ends (../soak/link_energy.h), link_begin and link_end across themselves.
+#define LINK_ENERGY_TOLERANCE LE_TOLERANCE
 
 // Random racks and layouts struck at random (as test_random_shots), run to rest with all three
 // models on, planar and airborne: every event dissipates, ball-ball events conserve momentum,
@@ -515,6 +603,9 @@ static void test_random_shots_all_models(void **state) {
 		int ne;
 		const pool_event *ev = pool_sim_events(sim, &ne);
 		events += ne;
+		int steps_ok = 1;
+		le_check(sim, &def.params, balls, n, &steps_ok);
+		assert_true(steps_ok);
 		pool_ball_state seg[16], all[16];
 		double t0[16];
 		for (int i = 0; i < n; ++i) {
@@ -543,10 +634,9 @@ static void test_random_shots_all_models(void **state) {
 			}
 			cushions += ev[e].type == POOL_EVENT_BALL_CUSHION;
 			const double gain = e_after - e_before - 1e-12 * e_before;
-			if (ev[e].type == POOL_EVENT_LINK_BEGIN || ev[e].type == POOL_EVENT_LINK_STEP ||
-			    ev[e].type == POOL_EVENT_LINK_END)
+			if (ev[e].type == POOL_EVENT_LINK_BEGIN || ev[e].type == POOL_EVENT_LINK_END)
 				assert_true(gain <= LINK_ENERGY_TOLERANCE);
-			else if (ev[e].type != POOL_EVENT_STRIKE)
+			else if (ev[e].type != POOL_EVENT_STRIKE && ev[e].type != POOL_EVENT_LINK_STEP)
 				worst_energy = fmax(worst_energy, gain);
 			if (ev[e].type == POOL_EVENT_BALL_BALL)
 				worst_momentum = fmax(worst_momentum, pool_v3_len(pool_v3_sub(p_after, p_before)) / (speeds + 1e-300));
@@ -586,6 +676,8 @@ int main(void) {
 		cmocka_unit_test(test_mathavan_frictionless),
 		cmocka_unit_test(test_mathavan_convergence_and_energy),
 		cmocka_unit_test(test_mathavan_edges),
+		cmocka_unit_test(test_mathavan_defaults_are_the_fit),
+		cmocka_unit_test(test_mathavan_random_impacts),
 		cmocka_unit_test(test_mathavan_in_sim),
 		cmocka_unit_test(test_throw_tp_a14),
 		cmocka_unit_test(test_ball_friction_law),

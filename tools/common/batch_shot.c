@@ -74,7 +74,7 @@ bool pool_batch_shoot(const pool_scenario *layout, const pool_batch_strike *s, p
 		r = pool_sim_state_at(*sim, pool_sim_end_time(*sim), final);
 	if (r != POOL_OK) {
 		snprintf(error, error_size, "simulation failed at t = %.17g s: %s", pool_sim_time(*sim),
-		         pool_result_str(r));
+		         pool_sim_last_error(*sim)[0] ? pool_sim_last_error(*sim) : pool_result_str(r));
 		*internal = true;
 		return false;
 	}

@@ -1,5 +1,5 @@
-// Kinds and names of the selectable models; the scenario parser (scenario.c) reads "models"
-// with them and the writers write it.
+// Kinds and names of the models and of the model sets; the scenario parser (scenario.c) reads
+// "models" with them, the commands' --models options apply them, and the writers write them.
 #include "models_json.h"
 
 #include <math.h>
@@ -83,10 +83,57 @@ void pool_model_names(const char *kind, char *out, size_t size) {
 	}
 }
 
-bool pool_models_are_default(const pool_models *models) {
-	return models->cushion == POOL_CUSHION_PETIT &&
-	       models->ball_ball_friction == POOL_BALL_FRICTION_CONSTANT &&
-	       models->squirt == POOL_SQUIRT_NONE;
+void pool_model_set_names(char *out, size_t size) {
+	size_t used = 0;
+	out[0] = '\0';
+	for (int i = 0; pool_models_preset_name(i); ++i)
+		if (!append(out, size, &used, pool_models_preset_name(i)))
+			return;
+}
+
+bool pool_models_apply(pool_models *models, const char *part) {
+	if (!part)
+		return false;
+	if (pool_models_preset(part, models) == POOL_OK)
+		return true;
+	for (size_t i = 0; i < KIND_COUNT; ++i)
+		if (pool_models_set(models, kinds[i].key, part) == 0)
+			return true;
+	return false;
+}
+
+int pool_models_parse_spec(pool_models *models, const char *spec, char *err, size_t err_size) {
+	char copy[256];
+	if (!spec || !spec[0] || strlen(spec) >= sizeof copy) {
+		snprintf(err, err_size, "%s", !spec || !spec[0] ? "empty" : "longer than 255 bytes");
+		return -1;
+	}
+	snprintf(copy, sizeof copy, "%s", spec);
+	pool_models m = *models;
+	for (char *part = copy;;) {
+		char *plus = strchr(part, '+');
+		if (plus)
+			*plus = '\0';
+		if (!pool_models_apply(&m, part)) {
+			char sets[64], names[192];
+			size_t used = 0;
+			pool_model_set_names(sets, sizeof sets);
+			names[0] = '\0';
+			for (size_t i = 0; i < KIND_COUNT; ++i) {
+				char one[64];
+				pool_model_names(kinds[i].key, one, sizeof one);
+				if (!append(names, sizeof names, &used, one))
+					break;
+			}
+			snprintf(err, err_size, "'%.60s' is no model set (%s) nor model (%s)", part, sets, names);
+			return -1;
+		}
+		if (!plus)
+			break;
+		part = plus + 1;
+	}
+	*models = m;
+	return 0;
 }
 
 // A value out of range (only a def the library would refuse has one) is named "unknown" by the

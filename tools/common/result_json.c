@@ -50,6 +50,8 @@ static void write_params(pool_jw *w, const pool_params *p) {
 		{"throw_b", p->throw_b},
 		{"throw_c", p->throw_c},
 		{"cue_end_mass", p->cue_end_mass},
+		{"e_cushion_mathavan", p->e_cushion_mathavan},
+		{"mu_cushion_mathavan", p->mu_cushion_mathavan},
 	};
 	pool_jw_key(w, "params");
 	pool_jw_object(w, true);
@@ -79,6 +81,10 @@ static void write_events(pool_jw *w, const pool_sim *sim, const pool_event *even
 		if (ev->rail != POOL_RAIL_NONE && pool_rail_name(ev->rail)) {
 			pool_jw_key(w, "rail");
 			pool_jw_string(w, pool_rail_name(ev->rail));
+		}
+		if (ev->part != POOL_PART_NONE && pool_cushion_part_name(ev->part)) {
+			pool_jw_key(w, "part");
+			pool_jw_string(w, pool_cushion_part_name(ev->part));
 		}
 		if (ev->pocket != POOL_POCKET_NONE && pool_pocket_name(ev->pocket)) {
 			pool_jw_key(w, "pocket");
@@ -275,12 +281,31 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 		pool_jw_number(&w, t->corner_mouth);
 		pool_jw_key(&w, "side_mouth");
 		pool_jw_number(&w, t->side_mouth);
+		pool_jw_key(&w, "pockets");
+		pool_jw_string(&w, pool_pockets_model_name(t->pockets));
+		if (t->pockets == POOL_POCKETS_JAWS) {
+			// The nose curve's geometry, as the scenario names it (angles in degrees).
+			const struct {
+				const char *name;
+				double value;
+			} jaws[] = {
+				{"corner_cut_angle", t->corner_cut_angle * 180.0 / 3.14159265358979323846},
+				{"side_cut_angle", t->side_cut_angle * 180.0 / 3.14159265358979323846},
+				{"corner_jaw_radius", t->corner_jaw_radius}, {"side_jaw_radius", t->side_jaw_radius},
+				{"corner_shelf", t->corner_shelf}, {"side_shelf", t->side_shelf},
+				{"corner_hole_radius", t->corner_hole_radius}, {"side_hole_radius", t->side_hole_radius},
+			};
+			for (size_t k = 0; k < sizeof jaws / sizeof jaws[0]; ++k) {
+				pool_jw_key(&w, jaws[k].name);
+				pool_jw_number(&w, jaws[k].value);
+			}
+		}
 		pool_jw_end(&w, '}');
 		pool_jw_key(&w, "ball_radius");
 		pool_jw_number(&w, options->def->params.ball_radius);
 		write_params(&w, &options->def->params);
-		if (!pool_models_are_default(&options->def->models))
-			pool_jw_models(&w, &options->def->models);
+		// Always: a result says which laws made it, whatever a reader's defaults are.
+		pool_jw_models(&w, &options->def->models);
 	}
 	// Every ball at t = 0: with the events' after-states, the start of each closed-form segment
 	// (docs/interfaces.md), from which a reader (pool-view) evaluates any instant exactly.

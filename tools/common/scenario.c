@@ -147,10 +147,15 @@ static int get_vec(parse_ctx *ctx, json_t *value, const char *path, size_t min_n
 	return 0;
 }
 
-static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
-	static const char *const fields[] = {"preset", "length", "width", "cushion_height",
-	                                     "corner_mouth", "side_mouth", NULL};
+// "table": a preset (its balls and cloth become the params' defaults: *preset_name), then any
+// field overriding it; the pocket model by name, cut angles in degrees.
+static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def, const char **preset_name) {
+	static const char *const fields[] = {"preset", "length", "width", "cushion_height", "corner_mouth",
+	                                     "side_mouth", "pockets", "corner_cut_angle", "side_cut_angle",
+	                                     "corner_jaw_radius", "side_jaw_radius", "corner_shelf", "side_shelf",
+	                                     "corner_hole_radius", "side_hole_radius", NULL};
 	*def = pool_default_table_def();
+	*preset_name = NULL;
 	if (!table)
 		return 0;
 	// "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}.
@@ -173,25 +178,45 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 		if (pool_table_preset(json_string_value(preset), def) != POOL_OK) {
 			char shown[POOL_ESCAPE_SHORT];
 			pool_escape_text(shown, sizeof shown, json_string_value(preset), json_string_length(preset));
-			return fail(ctx, "table.preset: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)", shown);
+			return fail(ctx, "table.preset: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)", shown);
 		}
+		*preset_name = json_string_value(preset);
+	}
+	json_t *pockets = json_object_get(table, "pockets");
+	if (pockets) {
+		const int model = json_is_string(pockets) ? pool_pockets_model_from_name(json_string_value(pockets)) : -1;
+		if (model < 0)
+			return fail(ctx, "table.pockets: must be \"jaws\", \"mouth_lines\" or \"none\"");
+		def->pockets = (pool_pockets_model)model;
 	}
 	struct {
 		const char *name;
 		double *field;
+		double scale;
 	} overrides[] = {
-		{"length", &def->length},
-		{"width", &def->width},
-		{"cushion_height", &def->cushion_height},
-		{"corner_mouth", &def->corner_mouth},
-		{"side_mouth", &def->side_mouth},
+		{"length", &def->length, 1.0},
+		{"width", &def->width, 1.0},
+		{"cushion_height", &def->cushion_height, 1.0},
+		{"corner_mouth", &def->corner_mouth, 1.0},
+		{"side_mouth", &def->side_mouth, 1.0},
+		{"corner_cut_angle", &def->corner_cut_angle, POOL_PI / 180.0},
+		{"side_cut_angle", &def->side_cut_angle, POOL_PI / 180.0},
+		{"corner_jaw_radius", &def->corner_jaw_radius, 1.0},
+		{"side_jaw_radius", &def->side_jaw_radius, 1.0},
+		{"corner_shelf", &def->corner_shelf, 1.0},
+		{"side_shelf", &def->side_shelf, 1.0},
+		{"corner_hole_radius", &def->corner_hole_radius, 1.0},
+		{"side_hole_radius", &def->side_hole_radius, 1.0},
 	};
 	for (size_t i = 0; i < sizeof overrides / sizeof overrides[0]; ++i) {
 		json_t *v = json_object_get(table, overrides[i].name);
 		char path[64];
 		snprintf(path, sizeof path, "table.%s", overrides[i].name);
-		if (v && get_number(ctx, v, path, overrides[i].field))
+		double x = 0.0;
+		if (v && get_number(ctx, v, path, &x))
 			return -1;
+		if (v)
+			*overrides[i].field = x * overrides[i].scale;
 	}
 	pool_error e = {{0}};
 	pool_result r = pool_table_def_validate(def, &e);
@@ -200,8 +225,10 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def) {
 	return 0;
 }
 
-static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
-	*p = pool_default_params();
+static int parse_params(parse_ctx *ctx, json_t *params, const char *preset, pool_params *p) {
+	// The preset's balls and cloth, else the defaults.
+	if (!preset || pool_params_preset(preset, p) != POOL_OK)
+		*p = pool_default_params();
 	if (!params)
 		return 0;
 	if (!json_is_object(params))
@@ -227,6 +254,8 @@ static int parse_params(parse_ctx *ctx, json_t *params, pool_params *p) {
 		{"throw_b", &p->throw_b},
 		{"throw_c", &p->throw_c},
 		{"cue_end_mass", &p->cue_end_mass},
+		{"e_cushion_mathavan", &p->e_cushion_mathavan},
+		{"mu_cushion_mathavan", &p->mu_cushion_mathavan},
 	};
 	size_t n = sizeof names / sizeof names[0];
 	const char *key;
@@ -285,14 +314,35 @@ static int parse_options(parse_ctx *ctx, json_t *options, pool_sim_def *def) {
 	return 0;
 }
 
-// "models" (docs/physics.md "Optional models"): each key a kind, each value a model name the library
-// knows (models_json.c).
+// A model set by name into *out ("default", "thesis"), or the message naming `path`.
+static int parse_model_set(parse_ctx *ctx, json_t *name, const char *path, pool_models *out) {
+	if (!json_is_string(name))
+		return fail(ctx, "%s: must be a string", path);
+	if (pool_models_preset(json_string_value(name), out) != POOL_OK) {
+		char shown[POOL_ESCAPE_SHORT], known[128];
+		pool_escape_text(shown, sizeof shown, json_string_value(name), json_string_length(name));
+		pool_model_set_names(known, sizeof known);
+		return fail(ctx, "%s: unknown model set \"%s\" (%s)", path, shown, known);
+	}
+	return 0;
+}
+
+// "models" (docs/physics.md "Models"): a model set by name ("thesis"), or an object whose "set"
+// (default "default") is overridden kind by kind, each value a model name the library knows
+// (models_json.c). Missing, it is the library's defaults.
 static int parse_models(parse_ctx *ctx, json_t *models, pool_models *out) {
+	*out = pool_default_models();
 	if (!models)
 		return 0;
+	if (json_is_string(models))
+		return parse_model_set(ctx, models, "models", out);
 	if (!json_is_object(models))
-		return fail(ctx, "models: must be an object");
-	if (check_fields(ctx, models, "models", pool_model_kinds))
+		return fail(ctx, "models: must be a model set name or an object");
+	static const char *const keys[] = {"set", "cushion", "ball_ball_friction", "squirt", NULL};
+	if (check_fields(ctx, models, "models", keys))
+		return -1;
+	json_t *set = json_object_get(models, "set");
+	if (set && parse_model_set(ctx, set, "models.set", out))
 		return -1;
 	for (const char *const *kind = pool_model_kinds; *kind; ++kind) {
 		json_t *v = json_object_get(models, *kind);
@@ -610,9 +660,10 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 	}
 
 	s->def = pool_default_sim_def();
-	if (parse_table(ctx, json_object_get(root, "table"), &s->def.table))
+	const char *preset = NULL;
+	if (parse_table(ctx, json_object_get(root, "table"), &s->def.table, &preset))
 		return -1;
-	if (parse_params(ctx, json_object_get(root, "params"), &s->def.params))
+	if (parse_params(ctx, json_object_get(root, "params"), preset, &s->def.params))
 		return -1;
 	if (parse_options(ctx, json_object_get(root, "options"), &s->def))
 		return -1;

@@ -274,7 +274,9 @@ static run_outcome run_budgeted(worker *w, double deadline, double queued_s, cha
 			int status = pool_sim_step(w->sim);
 			if (status < 0) {
 				snprintf(err, err_size, "simulation failed at t = %.17g s: %s",
-				         pool_sim_time(w->sim), pool_result_str((pool_result)status));
+				         pool_sim_time(w->sim),
+				         pool_sim_last_error(w->sim)[0] ? pool_sim_last_error(w->sim)
+				                                        : pool_result_str((pool_result)status));
 				return RUN_FAILED;
 			}
 			if (status == 0) {

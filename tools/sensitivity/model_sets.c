@@ -1,48 +1,31 @@
 // Named model sets for --models: the scenario's definition with some laws switched, so the
 // same noise can be run under two sets and the clouds compared.
-//
-// POOL_SENS_HAVE_MODELS is defined by tools/sensitivity.cmake when the library's pool_sim_def
-// has `models` (issue 12); without it only "default" and "spin-blind" exist.
 #include <stdio.h>
 #include <string.h>
 
+#include "models_json.h"
 #include "study.h"
 
 const char *sens_model_set_names(void) {
-#ifdef POOL_SENS_HAVE_MODELS
-	return "default, spin-blind, mathavan2010, alciatore, endmass, petit, constant, none";
-#else
-	return "default, spin-blind";
-#endif
+	return "default, spin-blind, thesis, mathavan2010, alciatore, endmass, petit, constant, none";
 }
 
 /// Applies one '+'-separated component to def; false when the name is unknown.
 static bool apply_component(const char *name, pool_sim_def *def) {
 	if (strcmp(name, "spin-blind") == 0) {
 		// FastFiz's limitation measured in the 2012 work: collisions that ignore spin, i.e. no
-		// tangential friction at ball-ball and ball-cushion contacts.
+		// tangential friction at ball-ball and ball-cushion contacts, whatever the laws: the
+		// constant mu_ball and Alciatore's fit (throw_a + throw_b e^(-c v) = 0), Petit's
+		// mu_cushion and Mathavan's nose friction.
 		def->params.mu_ball = 0.0;
+		def->params.throw_a = 0.0;
+		def->params.throw_b = 0.0;
 		def->params.mu_cushion = 0.0;
+		def->params.mu_cushion_mathavan = 0.0;
 		return true;
 	}
-#ifdef POOL_SENS_HAVE_MODELS
-	int m = pool_cushion_model_from_name(name);
-	if (m >= 0) {
-		def->models.cushion = (pool_cushion_model)m;
-		return true;
-	}
-	m = pool_ball_friction_model_from_name(name);
-	if (m >= 0) {
-		def->models.ball_ball_friction = (pool_ball_friction_model)m;
-		return true;
-	}
-	m = pool_squirt_model_from_name(name);
-	if (m >= 0) {
-		def->models.squirt = (pool_squirt_model)m;
-		return true;
-	}
-#endif
-	return false;
+	// "default" stands alone (the scenario as written), so here it is not the library's set.
+	return strcmp(name, "default") != 0 && pool_models_apply(&def->models, name);
 }
 
 int sens_model_set_parse(const char *name, const pool_sim_def *base, sens_model_set *out,

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "json_writer.h"
+#include "models_json.h"
 #include "study.h"
 #include "text_buffer.h"
 
@@ -179,6 +180,7 @@ char *sens_report_json(const sens_study *s) {
 		pool_jw_object(&w, false);
 		pool_jw_key(&w, "name");
 		pool_jw_string(&w, s->sets[set].name);
+		pool_jw_models(&w, &s->sets[set].def.models); // the laws the name stands for
 		pool_jw_key(&w, "simulated");
 		pool_jw_int(&w, r->n - r->refused - r->failed);
 		pool_jw_key(&w, "refused");

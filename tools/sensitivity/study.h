@@ -60,10 +60,9 @@ typedef struct sens_model_set {
 const char *sens_model_set_names(void);
 
 /// Builds set `name` from the scenario's definition: "default" (the scenario as written), or
-/// components joined by '+': "spin-blind" (params mu_ball = mu_cushion = 0) and, with a library
-/// that has optional models, any model name of pool_sim_def.models ("mathavan2010",
-/// "alciatore", "endmass", and the defaults "petit", "constant", "none"). Returns 0, or -1 with
-/// the message in err.
+/// components joined by '+': "spin-blind" (params mu_ball = mu_cushion = 0), the library's model
+/// set "thesis" (the 2012 work's laws), any model name of pool_sim_def.models ("mathavan2010",
+/// "alciatore", "endmass", "petit", "constant", "none"). Returns 0, or -1 with the message in err.
 int sens_model_set_parse(const char *name, const pool_sim_def *base, sens_model_set *out,
                          char *err, size_t err_size);
 

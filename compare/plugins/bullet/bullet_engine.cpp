@@ -262,16 +262,28 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 	rail_materials_.resize(table_.segments.size());
 	for (size_t i = 0; i < table_.segments.size(); ++i) {
 		const RailSegment &s = table_.segments[i];
-		const bool along_x = s.a[1] == s.b[1];
-		const double len = along_x ? s.b[0] - s.a[0] : s.b[1] - s.a[1];
+		const bool along_x = s.a[1] == s.b[1] && s.a[2] == s.b[2];
+		const bool along_y = s.a[0] == s.b[0] && s.a[2] == s.b[2];
+		const btVector3 axis(s.b[0] - s.a[0], s.b[1] - s.a[1], s.b[2] - s.a[2]);
+		const double len = axis.length();
 		std::unique_ptr<btCollisionShape> shape;
-		if (along_x)
-			shape = std::make_unique<btCapsuleShapeX>(settings_.capsule_radius, len);
-		else
-			shape = std::make_unique<btCapsuleShape>(settings_.capsule_radius, len); // along y
 		btTransform tr;
 		tr.setIdentity();
-		tr.setOrigin(btVector3(0.5 * (s.a[0] + s.b[0]), 0.5 * (s.a[1] + s.b[1]), s.a[2]));
+		if (along_x) {
+			shape = std::make_unique<btCapsuleShapeX>(s.radius, len);
+		} else if (along_y) {
+			shape = std::make_unique<btCapsuleShape>(s.radius, len); // along y
+		} else {
+			// A facing, a chord of a jaw or a jaw's vertical capsule (pockets "jaws"): the x
+			// capsule turned onto the segment's axis.
+			shape = std::make_unique<btCapsuleShapeX>(s.radius, len);
+			const btVector3 x(1.0, 0.0, 0.0), u = axis / len, turn = x.cross(u);
+			if (turn.length() > 1e-12)
+				tr.setRotation(btQuaternion(turn.normalized(), std::acos(std::clamp(u.x(), -1.0, 1.0))));
+			else if (u.x() < 0.0)
+				tr.setRotation(btQuaternion(btVector3(0.0, 0.0, 1.0), SIMD_PI));
+		}
+		tr.setOrigin(btVector3(0.5 * (s.a[0] + s.b[0]), 0.5 * (s.a[1] + s.b[1]), 0.5 * (s.a[2] + s.b[2])));
 		btRigidBody::btRigidBodyConstructionInfo ci(0.0, nullptr, shape.get());
 		ci.m_startWorldTransform = tr;
 		auto body = std::make_unique<btRigidBody>(ci);
@@ -347,7 +359,7 @@ bool Engine::build(const pool_scenario &scenario, double dt, std::string *error)
 		const double p[3] = {pi.x(), pi.y(), pi.z()};
 		for (size_t k = 0; k < ns; ++k)
 			if (pool_plugin::distance_to_axis(table_.segments[k], p) <=
-			    R + settings_.capsule_radius + settings_.release_gap)
+			    R + table_.segments[k].radius + settings_.release_gap)
 				rail_contacts_.set_touching(size_t(i), k);
 	}
 	for (auto &b : balls_)
@@ -597,29 +609,22 @@ void Engine::update_contacts(double t_detect) {
 		const btVector3 pi = bi.body->getCenterOfMassPosition();
 		const double p[3] = {pi.x(), pi.y(), pi.z()};
 		return !bi.active || pool_plugin::distance_to_axis(table_.segments[k], p) >
-		                         R + settings_.capsule_radius + settings_.release_gap;
+		                         R + table_.segments[k].radius + settings_.release_gap;
 	});
 }
 
 void Engine::measure_penetration() {
-	const double R = params_.ball_radius, rc = settings_.capsule_radius;
-	const size_t n = balls_.size();
-	for (size_t i = 0; i < n; ++i) {
-		if (!balls_[i]->active)
+	const double R = params_.ball_radius;
+	centres_.clear();
+	for (const auto &b : balls_) {
+		if (!b->active)
 			continue;
-		const btVector3 pi = balls_[i]->body->getCenterOfMassPosition();
-		for (size_t j = i + 1; j < n; ++j) {
-			if (!balls_[j]->active)
-				continue;
-			const btVector3 d = pi - balls_[j]->body->getCenterOfMassPosition();
-			const double d2 = d.length2();
-			if (d2 < 4.0 * R * R)
-				max_penetration_ = std::max(max_penetration_, 2.0 * R - std::sqrt(d2));
-		}
-		const double p[3] = {pi.x(), pi.y(), pi.z()};
+		const btVector3 p = b->body->getCenterOfMassPosition();
+		centres_.push_back({p.x(), p.y(), p.z()});
 		for (const RailSegment &s : table_.segments)
-			max_penetration_ = std::max(max_penetration_, R + rc - pool_plugin::distance_to_axis(s, p));
+			max_penetration_ = std::max(max_penetration_, R + s.radius - pool_plugin::distance_to_axis(s, centres_.back().data()));
 	}
+	max_penetration_ = std::max(max_penetration_, overlap_.deepest(centres_, R));
 }
 
 void Engine::classify(Ball &ball, bool report_events, double t) {

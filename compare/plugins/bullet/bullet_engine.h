@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine_state.h"
+#include "sphere_overlap.h"
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
 #include "scenario.h"
@@ -123,6 +124,8 @@ private:
 	std::vector<Material> rail_materials_;
 	std::vector<std::unique_ptr<Ball>> balls_;
 	std::vector<pool_engine_event> pending_; ///< this step's events, sorted before publishing
+	pool_plugin::SphereOverlap overlap_;     ///< the deepest ball-ball overlap of a step
+	std::vector<std::array<double, 3>> centres_; ///< active balls' centres, reused every step
 };
 
 } // namespace pool_bullet

@@ -20,7 +20,7 @@ extern "C" __attribute__((visibility("default"))) const pool_engine_api *pool_en
 	return &kApi;
 }
 
-// The optional models (docs/physics.md "Optional models") are not in this engine: a scenario that
+// The optional models (docs/physics.md "Models") are not in this engine: a scenario that
 // selects one runs with the engine's own laws, and the harness records which it lacked.
 extern "C" __attribute__((visibility("default"))) int pool_engine_unsupported_models(
 	const char *scenario_json, char *out, size_t out_size) {

@@ -115,7 +115,7 @@ template <class Engine> struct Glue {
 };
 
 /// The optional models query (POOL_ENGINE_MODELS_ENTRY) of an engine that has none of the optional
-/// models (docs/physics.md "Optional models"), only its own approximation of the default laws: every
+/// models (docs/physics.md "Models"), only its own approximation of the default laws: every
 /// kind the scenario selects away from its default is one it cannot express ("kind=name").
 inline int default_models_only(const char *json, char *out, size_t out_size) {
 	if (!json) {

@@ -37,7 +37,7 @@ typedef enum pool_result {
 	POOL_ERR_DUPLICATE_ID = -6,     ///< two balls share an id
 	POOL_ERR_UNKNOWN_BALL = -7,     ///< no ball has the given id
 	POOL_ERR_BAD_STRIKE = -8,       ///< cue parameters impossible (a^2 + b^2 >= R^2, speed <= 0...)
-	POOL_ERR_UNKNOWN_PRESET = -9,   ///< no table preset has that name
+	POOL_ERR_UNKNOWN_PRESET = -9,   ///< no table preset or model set has that name
 	POOL_ERR_STATE = -10,           ///< call not allowed in the simulation's current state
 	POOL_ERR_INTERNAL = -11,        ///< an invariant broke inside the library (a bug: please report)
 } pool_result;

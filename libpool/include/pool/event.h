@@ -53,15 +53,28 @@ typedef enum pool_pocket {
 /// "sw", "se", "nw", "ne", "s", "n" (NULL for POOL_POCKET_NONE).
 POOL_API const char *pool_pocket_name(pool_pocket pocket);
 
+/// Part of a cushion's nose curve a ball touched (docs/physics.md "Table geometry"); values are
+/// stable.
+typedef enum pool_cushion_part {
+	POOL_PART_NONE = -1, ///< not a cushion event, or the thesis model (pockets "mouth_lines")
+	POOL_PART_NOSE = 0,  ///< a nose segment along its rail ("nose")
+	POOL_PART_FACING = 1, ///< a pocket's facing ("facing")
+	POOL_PART_JAW = 2,   ///< a pocket's rounded jaw ("jaw")
+} pool_cushion_part;
+
+/// "nose", "facing", "jaw" (NULL for POOL_PART_NONE).
+POOL_API const char *pool_cushion_part_name(pool_cushion_part part);
+
 /// One processed event. The states of the balls it involved, just after it, are
 /// pool_sim_event_states(sim, event)[0 .. ball_count-1] (they carry the ball ids).
 typedef struct pool_event {
 	double time;          ///< s, absolute time since the start of the shot
 	pool_event_type type; ///< what happened
 	pool_rail rail;       ///< for POOL_EVENT_BALL_CUSHION, else POOL_RAIL_NONE
-	pool_pocket pocket;   ///< for POOL_EVENT_POCKET, else POOL_POCKET_NONE
+	pool_pocket pocket;   ///< for POOL_EVENT_POCKET; for a cushion event, the pocket of the facing or jaw hit
 	int ball_count;       ///< balls involved (1 or 2; more for link events)
 	int first_state;      ///< index of the first involved ball's state in the event-state array
+	pool_cushion_part part; ///< for POOL_EVENT_BALL_CUSHION with pockets "jaws" or "none", else POOL_PART_NONE
 } pool_event;
 
 #ifdef __cplusplus

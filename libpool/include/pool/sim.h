@@ -20,30 +20,47 @@ typedef struct pool_sim pool_sim;
 /// Overlap below which two balls count as touching, not interpenetrating (rounding of racks).
 #define POOL_TOUCH_TOLERANCE 1e-9
 
-/// Cushion law (docs/physics.md "Cushion" and "Optional models").
+/// Cushion law (docs/physics.md "Cushion" and "Models"). The values travel in files and messages:
+/// they never change.
 typedef enum pool_cushion_model {
-	POOL_CUSHION_PETIT = 0,       ///< "petit": Petit's 3D impulse (the default)
-	POOL_CUSHION_MATHAVAN2010 = 1 ///< "mathavan2010": cushion and cloth contacts through the impact
+	POOL_CUSHION_PETIT = 0,       ///< "petit": Petit's 3D impulse (the 2012 work's law, "thesis")
+	POOL_CUSHION_MATHAVAN2010 = 1 ///< "mathavan2010": cushion and cloth contacts through the impact (the default)
 } pool_cushion_model;
 
 /// Ball-ball friction law.
 typedef enum pool_ball_friction_model {
-	POOL_BALL_FRICTION_CONSTANT = 0, ///< "constant": params.mu_ball (the default)
-	POOL_BALL_FRICTION_ALCIATORE = 1 ///< "alciatore": throw_a + throw_b exp(-throw_c v_rel)
+	POOL_BALL_FRICTION_CONSTANT = 0, ///< "constant": params.mu_ball (the 2012 work's law, "thesis")
+	POOL_BALL_FRICTION_ALCIATORE = 1 ///< "alciatore": throw_a + throw_b exp(-throw_c v_rel) (the default)
 } pool_ball_friction_model;
 
 /// Squirt of an off-centre strike.
 typedef enum pool_squirt_model {
-	POOL_SQUIRT_NONE = 0,   ///< "none": the ball leaves along the cue (the default)
+	POOL_SQUIRT_NONE = 0,   ///< "none": the ball leaves along the cue (the default, and "thesis")
 	POOL_SQUIRT_ENDMASS = 1 ///< "endmass": turned by the cue end mass (params.cue_end_mass)
 } pool_squirt_model;
 
-/// The optional models of a simulation; all zero means the default laws.
+/// The laws of a simulation. pool_default_models() are the measured laws; a zero-initialised
+/// pool_models is the "thesis" set, the 2012 work's laws (Petit cushions, constant mu_ball, no
+/// squirt), which were the defaults before issue 25.
 typedef struct pool_models {
 	pool_cushion_model cushion;
 	pool_ball_friction_model ball_ball_friction;
 	pool_squirt_model squirt;
 } pool_models;
+
+/// The default laws: "mathavan2010" cushions, "alciatore" ball-ball friction, squirt "none".
+POOL_API pool_models pool_default_models(void);
+
+/// The "thesis" model set: "petit", "constant", "none" (all zero), the 2012 work's laws; a def with
+/// them simulates bit for bit as libpool's defaults did before issue 25.
+POOL_API pool_models pool_thesis_models(void);
+
+/// Model set by name: "default" (pool_default_models) or "thesis" (pool_thesis_models);
+/// POOL_ERR_UNKNOWN_PRESET for another name (*models unchanged), POOL_ERR_INVALID_ARGUMENT for NULL.
+POOL_API pool_result pool_models_preset(const char *name, pool_models *models);
+
+/// The name of model set i (0 "default", 1 "thesis"), NULL past the last: lists them for messages.
+POOL_API const char *pool_models_preset_name(int i);
 
 /// Model names as in docs/interfaces.md ("petit", "mathavan2010", "constant", "alciatore", "none",
 /// "endmass"); "unknown" for a value out of range.
@@ -64,10 +81,11 @@ typedef struct pool_sim_def {
 	double max_time;          ///< s, the shot stops at this time even if balls still move
 	int max_events;           ///< the shot stops after this many events
 	pool_allocator allocator; ///< optional; zero means malloc/free
-	pool_models models;       ///< optional models; zero means the default laws
+	pool_models models;       ///< the laws; pool_default_models() by default, zero is "thesis"
 } pool_sim_def;
 
-/// WPA 9 ft table, docs/physics.md parameters, planar, max_time 120 s, max_events 100000, default models.
+/// WPA 9 ft table, docs/physics.md parameters, planar, max_time 120 s, max_events 100000,
+/// pool_default_models() (the measured laws; set models = pool_thesis_models() for the 2012 work's).
 POOL_API pool_sim_def pool_default_sim_def(void);
 
 /// Why the shot ended (or POOL_STOP_NONE while it runs).
@@ -112,6 +130,13 @@ POOL_API pool_result pool_sim_run(pool_sim *sim);
 
 /// Processes every event at or before time t (s), so pool_sim_state_at(sim, t, ...) is final.
 POOL_API pool_result pool_sim_run_until(pool_sim *sim, double t);
+
+/// What the last failed pool_sim_step, pool_sim_run, pool_sim_run_until, pool_sim_state_at or
+/// pool_sim_states_at call met, in words: a LINK step whose LCP could not be solved (its instant,
+/// its cluster's balls and contacts, the residual), memory running out (and when), a time asked
+/// past the time processed (and that time); "" after such a call that succeeded. Valid until the
+/// next call on the simulation; "sim: missing" for NULL.
+POOL_API const char *pool_sim_last_error(const pool_sim *sim);
 
 /// Why the shot ended so far.
 POOL_API pool_stop_reason pool_sim_stop_reason(const pool_sim *sim);

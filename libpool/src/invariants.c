@@ -1,0 +1,107 @@
+// The whole world checked (invariants.h).
+#include "invariants.h"
+
+#ifdef POOL_ASSERTS
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "motion.h"
+#include "vec3.h"
+
+/// m: a ball's recorded state, evolved to the start of its current segment, is where the segment
+/// starts (positions are continuous), to the rounding of positions evaluated from two polynomials.
+#define POOL_CHECK_POSITION 1e-9
+
+static char detail[256];
+
+// The heap: every slot at its position, every parent's key at most its children's.
+static void check_heap(const pool_sim *sim) {
+	const pool_event_queue *q = &sim->queue;
+	POOL_ASSERT(q->count == sim->n);
+	for (int i = 0; i < q->count; ++i) {
+		snprintf(detail, sizeof detail, "heap position %d", i);
+		POOL_ASSERT_MSG(q->heap[i] >= 0 && q->heap[i] < q->count && q->pos[q->heap[i]] == i, detail);
+		if (i > 0)
+			POOL_ASSERT_MSG(pool_event_key_cmp(&q->keys[q->heap[(i - 1) / 2]], &q->keys[q->heap[i]]) <= 0, detail);
+	}
+}
+
+// The bodies: each one's slot, partner and own event, and the segment it is in.
+static void check_bodies(const pool_sim *sim) {
+	for (int i = 0; i < sim->n; ++i) {
+		const pool_body *b = &sim->body[i];
+		const pool_event_key *k = &sim->keys[i];
+		snprintf(detail, sizeof detail, "ball %d (index %d, %s) at t = %.17g s", (int)sim->cur[i].id, i,
+		         pool_motion_name(sim->cur[i].motion), sim->time);
+		POOL_ASSERT_MSG(k->slot == i, detail);
+		POOL_ASSERT_MSG(memcmp(&sim->cur[i], &b->seg.start, sizeof sim->cur[i]) == 0, detail);
+		POOL_ASSERT_MSG(b->active == (sim->cur[i].motion != POOL_MOTION_POCKETED && sim->cur[i].motion != POOL_MOTION_OFF_TABLE),
+		                detail);
+		POOL_ASSERT_MSG(b->partner >= -1 && b->partner < sim->n && b->partner != i, detail);
+		POOL_ASSERT_MSG(b->partner < 0 || (b->active && sim->body[b->partner].active), detail);
+		POOL_ASSERT_MSG(!(b->seg.t0 > sim->time) || sim->time == 0.0, detail);
+		POOL_ASSERT_MSG(!isnan(k->time) && (!(k->time < sim->time) || sim->stop != POOL_STOP_NONE), detail);
+		// A ball is linked when, and only when, LINK holds it, and its next event is no later than
+		// its cluster's step.
+		const int c = pool_link_cluster_of(&sim->link, i);
+		POOL_ASSERT_MSG((c >= 0) == (sim->cur[i].motion == POOL_MOTION_LINKED), detail);
+		POOL_ASSERT_MSG(c < 0 || (b->active && b->own_time <= pool_link_next_step(&sim->link, i)), detail);
+	}
+}
+
+// LINK's clusters: every ball's cluster in use, every cluster in use with balls, its steps sound.
+static void check_link(const pool_sim *sim) {
+	const pool_link *link = &sim->link;
+	POOL_ASSERT(link->n == sim->n);
+	for (int c = 0; c < sim->n; ++c) {
+		const pool_cluster *cl = &link->clusters[c];
+		int members = 0;
+		for (int i = 0; i < sim->n; ++i)
+			members += link->cluster_of[i] == c;
+		snprintf(detail, sizeof detail, "cluster %d (%d balls) at t = %.17g s", c, members, sim->time);
+		POOL_ASSERT_MSG(cl->active || members == 0, detail);
+		if (!cl->active)
+			continue;
+		POOL_ASSERT_MSG(members > 0 || sim->stop != POOL_STOP_NONE, detail);
+		POOL_ASSERT_MSG(!isnan(cl->t_next) && !(cl->t_next < sim->time), detail);
+		POOL_ASSERT_MSG(cl->dt >= POOL_LINK_STEP_TIME && cl->dt <= POOL_LINK_STEP_MAX, detail);
+		POOL_ASSERT_MSG(!cl->in_step || (cl->t_start <= sim->time && cl->step_dt > 0.0 && cl->t_start + cl->step_dt == cl->t_next),
+		                detail);
+	}
+	for (int i = 0; i < sim->n; ++i) {
+		const int c = link->cluster_of[i];
+		POOL_ASSERT_MSG(c >= -1 && c < sim->n && (c < 0 || link->clusters[c].active), "a ball's cluster");
+	}
+}
+
+// The history: the events in time order, each ball's chain back in time, and each ball's
+// current segment starting where its last recorded state has brought it.
+static void check_history(pool_sim *sim) {
+	pool_history *h = &sim->history;
+	POOL_ASSERT(h->n_events <= sim->def.max_events);
+	POOL_ASSERT(pool_history_valid(h, sim->n));
+	if (h->n_events > 0)
+		POOL_ASSERT(h->events[h->n_events - 1].time <= sim->time);
+	for (int i = 0; i < sim->n; ++i) {
+		const int k = h->last[i];
+		const pool_segment *seg = &sim->body[i].seg;
+		snprintf(detail, sizeof detail, "ball %d's history at t = %.17g s", (int)sim->cur[i].id, sim->time);
+		POOL_ASSERT_MSG(h->state_time[k] <= seg->t0, detail);
+		pool_ball_state s;
+		pool_motion_evolve(&sim->def.params, &h->states[k], seg->t0 - h->state_time[k], &s);
+		POOL_ASSERT_MSG(pool_v3_len(pool_v3_sub(s.pos, seg->start.pos)) <= POOL_CHECK_POSITION, detail);
+	}
+}
+
+void pool_world_check(pool_sim *sim) {
+	if (!sim->predicted)
+		return;
+	check_heap(sim);
+	check_bodies(sim);
+	check_link(sim);
+	check_history(sim);
+}
+#else
+typedef int pool_invariants_unused; // (ISO C wants a translation unit to declare something)
+#endif

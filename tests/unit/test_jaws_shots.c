@@ -1,0 +1,222 @@
+// Invariants over random shots on the three table families (wpa-9ft and snooker with pockets
+// "jaws", carom with none), planar and airborne: no ball inside a cushion (its distance to the
+// nose curve, sampled densely, never below R in 3D, so never below dc on the cloth) nor on the
+// cloth over a hole without being pocketed, no two balls inside each other, kinetic energy never increases
+// across an event, every shot ends (at rest, within max_events), and a rerun gives the same
+// events bit for bit.
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "sim_fixture.h"
+
+#include "motion.h"
+#include "pool/pool.h"
+#include "table_shape.h"
+#include "vec3.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define SHOTS 40 // ASan+UBSan Debug build: the same checks, fewer shots
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SHOTS 40
+#endif
+#endif
+#ifndef SHOTS
+#define SHOTS 300
+#endif
+#define SAMPLES 600
+#define MAX_BALLS 16
+/// m: rounding of positions at table scale, the touching band of contacts.
+#define POSITION_TOLERANCE 1e-9
+
+static uint64_t rng = 0x2545F4914F6CDD1Dull;
+static double urand(void) {
+	rng ^= rng << 13;
+	rng ^= rng >> 7;
+	rng ^= rng << 17;
+	return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static int active(const pool_ball_state *b) { return b->motion != POOL_MOTION_POCKETED && b->motion != POOL_MOTION_OFF_TABLE; }
+
+// How far (m) a ball centred at p is inside the cushions (> 0: a violation): R less its 3D
+// distance to the nose curve (jaws), or to the four nose lines (none), and how far over a hole.
+static double inside(const pool_table_shape *sh, const pool_sim_def *def, pool_vec3 p) {
+	const double R = def->params.ball_radius, h = def->table.cushion_height;
+	if (def->table.pockets == POOL_POCKETS_NONE) {
+		const double across[4] = {p.y, def->table.width - p.y, p.x, def->table.length - p.x};
+		double worst = -INFINITY;
+		for (int k = 0; k < 4; ++k)
+			worst = fmax(worst, across[k] < 0.0 ? R - across[k] : R - sqrt(across[k] * across[k] + (p.z - h) * (p.z - h)));
+		return worst;
+	}
+	double worst = R - pool_shape_distance(sh, p, NULL);
+	// On the cloth over a hole (a flying ball may pass over one, or drop through its throat).
+	for (int k = 0; k < 6 && p.z <= R + POSITION_TOLERANCE; ++k) {
+		const pool_pocket_shape *ps = &sh->pockets[k];
+		worst = fmax(worst, ps->hole_radius - hypot(p.x - ps->hx, p.y - ps->hy));
+	}
+	return worst;
+}
+
+typedef struct stats {
+	double worst_inside, worst_overlap, worst_energy;
+	long events, shots, pocketed, jaw_hits, facing_hits;
+	int max_events;
+} stats;
+
+static void sample(const pool_sim *sim, const pool_table_shape *sh, const pool_sim_def *def, double t, stats *st) {
+	pool_ball_state s[MAX_BALLS];
+	const int n = pool_sim_ball_count(sim);
+	assert_int_equal(pool_sim_state_at(sim, t, s), POOL_OK);
+	for (int i = 0; i < n; ++i) {
+		if (!active(&s[i]))
+			continue;
+		st->worst_inside = fmax(st->worst_inside, inside(sh, def, s[i].pos));
+		for (int j = i + 1; j < n; ++j)
+			if (active(&s[j]))
+				st->worst_overlap = fmax(st->worst_overlap, 2.0 * def->params.ball_radius - pool_v3_len(pool_v3_sub(s[i].pos, s[j].pos)));
+	}
+}
+
+static void one_family(const char *preset, int airborne, stats *st) {
+	pool_sim_def def = pool_default_sim_def();
+	assert_int_equal(pool_table_preset(preset, &def.table), POOL_OK);
+	assert_int_equal(pool_params_preset(preset, &def.params), POOL_OK);
+	def.airborne = airborne != 0;
+	pool_table_shape sh;
+	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
+	pool_sim *sim = make_sim(&def), *again = make_sim(&def);
+	const double R = def.params.ball_radius, dc = pool_table_contact_distance(&def.table, R);
+	const double L = def.table.length, W = def.table.width;
+	for (int k = 0; k < SHOTS; ++k) {
+		pool_ball_state balls[MAX_BALLS];
+		int n = 0;
+		const int want = 1 + (int)(urand() * MAX_BALLS);
+		for (int tries = 0; n < want && tries < 2000; ++tries) {
+			pool_ball_state b;
+			memset(&b, 0, sizeof b);
+			b.id = n;
+			// Near the cushions and pockets half the time: the parts get hit.
+			const double margin = urand() < 0.5 ? 0.15 : 0.5 * W;
+			double x = dc + urand() * (L - 2.0 * dc), y = dc + urand() * (W - 2.0 * dc);
+			if (urand() < 0.5)
+				x = urand() < 0.5 ? dc + urand() * margin : L - dc - urand() * margin;
+			b.pos = pool_v3(x, y, R);
+			int ok = 1;
+			for (int j = 0; j < n; ++j)
+				ok &= pool_v3_len(pool_v3_sub(b.pos, balls[j].pos)) >= 2.0 * R;
+			if (ok)
+				balls[n++] = b;
+		}
+		double r = 0.9 * R * sqrt(urand()), a = urand() * 6.283185307179586;
+		pool_strike strike = {0.05 + urand() * 7.95, urand() * 6.283185307179586,
+		                      airborne && urand() < 0.6 ? urand() * 1.3 : 0.0, r * cos(a), r * sin(a)};
+		for (int pass = 0; pass < (k % 10 == 0 ? 2 : 1); ++pass) {
+			pool_sim *s = pass ? again : sim;
+			assert_int_equal(pool_sim_reset(s, NULL, NULL), POOL_OK);
+			for (int i = 0; i < n; ++i)
+				add_ball(s, &balls[i]);
+			assert_int_equal(pool_sim_strike(s, 0, &strike, NULL), POOL_OK);
+			assert_int_equal(pool_sim_run(s), POOL_OK);
+		}
+		if (pool_sim_stop_reason(sim) != POOL_STOP_REST)
+			fail_msg("%s%s shot %d: stopped by %d", preset, airborne ? " airborne" : "", k, (int)pool_sim_stop_reason(sim));
+		int ne;
+		const pool_event *ev = pool_sim_events(sim, &ne);
+		st->events += ne;
+		st->shots++;
+		st->max_events = ne > st->max_events ? ne : st->max_events;
+		if (k % 10 == 0) { // determinism
+			int n2;
+			const pool_event *e2 = pool_sim_events(again, &n2);
+			assert_int_equal(ne, n2);
+			assert_memory_equal(ev, e2, sizeof(pool_event) * (size_t)ne);
+		}
+		// Energy across each event: the involved balls just before (their segments evolved to
+		// the event) and just after.
+		pool_ball_state seg[MAX_BALLS];
+		double t0[MAX_BALLS];
+		for (int i = 0; i < n; ++i) {
+			seg[i] = balls[i];
+			t0[i] = 0.0;
+		}
+		for (int e = 0; e < ne; ++e) {
+			const pool_ball_state *after = pool_sim_event_states(sim, &ev[e]);
+			double before_e = 0.0, after_e = 0.0;
+			for (int j = 0; j < ev[e].ball_count; ++j) {
+				const int i = ball_index(balls, n, after[j].id);
+				pool_ball_state before;
+				if (ev[e].type == POOL_EVENT_STRIKE)
+					before = seg[i];
+				else
+					pool_motion_evolve(&def.params, &seg[i], ev[e].time - t0[i], &before);
+				before_e += pool_motion_energy(&def.params, &before);
+				after_e += pool_motion_energy(&def.params, &after[j]);
+				seg[i] = after[j];
+				t0[i] = ev[e].time;
+			}
+			if (ev[e].type == POOL_EVENT_BALL_CUSHION) {
+				st->jaw_hits += ev[e].part == POOL_PART_JAW;
+				st->facing_hits += ev[e].part == POOL_PART_FACING;
+			}
+			st->pocketed += ev[e].type == POOL_EVENT_POCKET;
+			if (ev[e].type != POOL_EVENT_STRIKE && ev[e].type != POOL_EVENT_LINK_BEGIN && ev[e].type != POOL_EVENT_LINK_STEP &&
+			    ev[e].type != POOL_EVENT_LINK_END)
+				st->worst_energy = fmax(st->worst_energy, after_e - before_e - 1e-12 * fmax(before_e, 1.0));
+			sample(sim, &sh, &def, ev[e].time, st);
+		}
+		const double end = pool_sim_end_time(sim);
+		for (int i = 0; i <= SAMPLES; ++i)
+			sample(sim, &sh, &def, end * i / SAMPLES, st);
+		if (st->worst_inside > POSITION_TOLERANCE || st->worst_overlap > POSITION_TOLERANCE || st->worst_energy > 0.0) {
+			// The shot, to reproduce it: its balls, strike and events.
+			for (int i = 0; i < n; ++i)
+				printf("ball %d at (%.17g, %.17g)\n", (int)balls[i].id, balls[i].pos.x, balls[i].pos.y);
+			printf("strike speed %.17g phi %.17g theta %.17g a %.17g b %.17g\n", strike.speed, strike.phi, strike.theta,
+			       strike.a, strike.b);
+			for (int e = 0; e < ne; ++e) {
+				const pool_ball_state *after = pool_sim_event_states(sim, &ev[e]);
+				printf("  %.9f %s ball %d part %d pocket %d at (%.6f, %.6f, %.6f) v (%.4f, %.4f, %.4f)\n", ev[e].time,
+				       pool_event_type_name(ev[e].type), (int)after[0].id, (int)ev[e].part, (int)ev[e].pocket, after[0].pos.x,
+				       after[0].pos.y, after[0].pos.z, after[0].vel.x, after[0].vel.y, after[0].vel.z);
+			}
+			fail_msg("%s%s shot %d (seed state %llu): inside a cushion by %.3g m, overlap %.3g m, energy gain %.3g J", preset,
+			         airborne ? " airborne" : "", k, (unsigned long long)rng, st->worst_inside, st->worst_overlap, st->worst_energy);
+		}
+	}
+	pool_sim_destroy(sim);
+	pool_sim_destroy(again);
+}
+
+static void test_families(void **state) {
+	(void)state;
+	const char *presets[] = {"wpa-9ft", "snooker", "carom"};
+	for (int p = 0; p < 3; ++p)
+		for (int airborne = 0; airborne <= 1; ++airborne) {
+			stats st;
+			memset(&st, 0, sizeof st);
+			st.worst_inside = st.worst_overlap = st.worst_energy = -INFINITY;
+			one_family(presets[p], airborne, &st);
+			printf("%s%s: %ld shots, %ld events (max %d), %ld pocketed, %ld jaw and %ld facing contacts, "
+			       "worst inside %.3g m, overlap %.3g m, energy %.3g J\n",
+			       presets[p], airborne ? " airborne" : "", st.shots, st.events, st.max_events, st.pocketed, st.jaw_hits,
+			       st.facing_hits, st.worst_inside, st.worst_overlap, st.worst_energy);
+			// The shots reach the pockets' parts (and, on the cloth, the holes): the checks saw them.
+			if (p < 2)
+				assert_true(st.jaw_hits + st.facing_hits > 0 && (airborne || st.pocketed > 0));
+		}
+}
+
+int main(void) {
+	const struct CMUnitTest tests[] = {cmocka_unit_test(test_families)};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
