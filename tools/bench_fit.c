@@ -20,9 +20,10 @@ static void bench(const char *name, int shots, const char *spec) {
 	if (!truth || !pb.shots || fit_parse_spec(spec, pb.free_shot, pb.free_table) != 0)
 		exit(1);
 	pool_params table = pool_default_params();
+	const pool_models models = pool_default_models();
 	fit_random_table(7, pb.free_table, &table);
 	for (int k = 0; k < shots; ++k)
-		if (fit_synthetic_shot(7, k, &table, 100.0, 0.001, &truth[k], &pb.shots[k]) != 0)
+		if (fit_synthetic_shot(7, k, &table, &models, 100.0, 0.001, &truth[k], &pb.shots[k]) != 0)
 			exit(1);
 	if (fit_problem_setup(&pb, spec) != 0)
 		exit(1);

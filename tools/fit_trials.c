@@ -25,7 +25,8 @@
 
 static const char usage_text[] =
 	"usage: pool-fit-trials [--trials N] [--sigma M[,M...]] [--rate HZ] [--fit NAMES] [--seed S]\n"
-	"                       [--threads N] [--min-coverage P] [--shrink-tolerance T] [--verbose]\n"
+	"                       [--models SET] [--threads N] [--min-coverage P] [--shrink-tolerance T]\n"
+	"                       [--verbose]\n"
 	"\n"
 	"Seeded synthetic trials of pool-fit: random shots simulated from known values, recorded with\n"
 	"Gaussian position noise, fitted; prints how often each known value lies inside the reported\n"
@@ -38,11 +39,12 @@ static const char usage_text[] =
 	"  --fit NAMES       as pool-fit --fit (default strike); fitted table parameters get random\n"
 	"                    true values in their measured ranges\n"
 	"  --seed S          seed of the trials (default 1)\n"
+	"  --models SET      the laws the shots are made and fitted with: default or thesis\n"
 	"  --threads N       threads per fit (default: online CPUs)\n"
 	"  --min-coverage P  exit 1 when a parameter's coverage is below P (e.g. 0.9)\n"
 	"  --shrink-tolerance T  exit 1 when a median width does not scale with sigma: its ratio to\n"
 	"                    the previous level's, over the ratio of the sigmas, is off 1 by more than T\n"
-	"  --verbose         one line per trial\n";
+	"  --verbose         one line per trial: (fit - truth) / se and [the interval's ends - truth] / se\n";
 
 // ---- one trial --------------------------------------------------------------------------------
 
@@ -61,6 +63,8 @@ typedef struct trials_options {
 	double rate;
 	const char *spec;
 	unsigned long seed;
+	pool_models models;
+	const char *models_name;
 	long threads;
 	double min_coverage;
 	double shrink_tolerance;
@@ -79,7 +83,7 @@ static int run_trial(const trials_options *o, long index, double sigma, double *
 		return -1; // the message is printed
 	pool_params table = pool_default_params();
 	fit_random_table(o->seed * 0x9E3779B97F4A7C15ULL + (uint64_t)index, pb.free_table, &table);
-	if (fit_synthetic_shot(o->seed, index, &table, o->rate, sigma, &made, &shot) != 0)
+	if (fit_synthetic_shot(o->seed, index, &table, &o->models, o->rate, sigma, &made, &shot) != 0)
 		return -1;
 	pb.shots = &shot;
 	const pool_strike strike = made.strike;
@@ -117,7 +121,8 @@ static int by_value(const void *a, const void *b) {
 
 static int parse(int argc, char **argv, trials_options *o) {
 	*o = (trials_options){.trials = 200, .sigmas = {0.001}, .sigma_count = 1, .rate = 100.0, .spec = "strike",
-	                      .seed = 1, .min_coverage = -1.0, .shrink_tolerance = -1.0};
+	                      .seed = 1, .models = pool_default_models(), .models_name = "default",
+	                      .min_coverage = -1.0, .shrink_tolerance = -1.0};
 	for (int i = 1; i < argc; ++i) {
 		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
 		if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
@@ -138,6 +143,8 @@ static int parse(int argc, char **argv, trials_options *o) {
 			continue;
 		else if (strcmp(a, "--fit") == 0)
 			o->spec = v;
+		else if (strcmp(a, "--models") == 0 && pool_models_preset(v, &o->models) == POOL_OK)
+			o->models_name = v;
 		else if (strcmp(a, "--seed") == 0 && pool_cli_parse_count(v, &n) && n >= 1)
 			o->seed = (unsigned long)n;
 		else if (strcmp(a, "--threads") == 0 && pool_cli_parse_count(v, &n) && n >= 1 && n <= 1024)
@@ -208,14 +215,15 @@ int main(int argc, char **argv) {
 				       !out.solved ? "unsolved" : out.failed ? "FAILED" : "ok", 1e3 * out.rms, out.iterations,
 				       out.seconds);
 				for (int j = 0; out.solved && j < p; ++j)
-					printf(" %s %.2f%s", info[j]->name, (est[j].value - truth[j]) / est[j].se,
+					printf(" %s %.2f [%.2f %.2f]%s", info[j]->name, (est[j].value - truth[j]) / est[j].se,
+					       (est[j].ci_low - truth[j]) / est[j].se, (est[j].ci_high - truth[j]) / est[j].se,
 					       truth[j] >= est[j].ci_low && truth[j] <= est[j].ci_high ? "" : " MISSED");
 				printf("\n");
 			}
 		}
-		printf("%s: %ld trials, sigma %g m, %g Hz, --fit %s: %ld failed (rms > %.1f sigma), %ld unsolved, "
-		       "%.3f s per fit\n", PROGRAM, o.trials, sigma, o.rate, o.spec, failed, TRIALS_FAILED_RMS, unsolved,
-		       seconds / (double)o.trials);
+		printf("%s: %ld trials, sigma %g m, %g Hz, --fit %s, models %s: %ld failed (rms > %.1f sigma), %ld "
+		       "unsolved, %.3f s per fit\n", PROGRAM, o.trials, sigma, o.rate, o.spec, o.models_name, failed,
+		       TRIALS_FAILED_RMS, unsolved, seconds / (double)o.trials);
 		printf("  %-12s %9s %16s %12s\n", "parameter", "coverage", "median width", "width ratio");
 		for (int j = 0; j < p; ++j) {
 			double *w = &widths[((size_t)level * (size_t)max_p + (size_t)j) * (size_t)o.trials];

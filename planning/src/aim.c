@@ -158,6 +158,13 @@ static void refine_task(aim_search *s, aim_worker *w, long i, void *ctx) {
 	aim_refine(s, w, &s->cands[i]);
 }
 
+pool_result pool_aim_def_validate(const pool_aim_def *def, pool_error *error) {
+	int count = 0, cue = -1;
+	if (error)
+		error->message[0] = '\0';
+	return check(def, NULL, 0, &count, error, &cue);
+}
+
 pool_result pool_aim_search(const pool_aim_def *def, pool_aim_shot *shots, int capacity, int *count,
                             pool_aim_stats *stats, pool_error *error) {
 	aim_search s = {.def = def};

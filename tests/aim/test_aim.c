@@ -236,6 +236,10 @@ static void expect_error(const pool_aim_def *d, pool_result code, const char *ne
 	assert_int_equal(pool_aim_search(d, shots, TOP, &count, NULL, &e), code);
 	if (!strstr(e.message, needle))
 		fail_msg("message '%s' lacks '%s'", e.message, needle);
+	// The check alone says the same.
+	pool_error v;
+	assert_int_equal(pool_aim_def_validate(d, &v), code);
+	assert_string_equal(v.message, e.message);
 }
 
 static void test_bad_input(void **state) {
@@ -276,6 +280,8 @@ static void test_bad_input(void **state) {
 	pool_game_state three = pool_game_default_state(POOL_GAME_THREE_CUSHION);
 	b = def_of(carom, 3), b.game = &three;
 	expect_error(&b, POOL_ERR_INVALID_ARGUMENT, "three_cushion has no pockets");
+	assert_int_equal(pool_aim_def_validate(&d, NULL), POOL_OK);
+	assert_int_equal(pool_aim_def_validate(NULL, NULL), POOL_ERR_INVALID_ARGUMENT);
 	pool_aim_shot shot;
 	int count;
 	assert_int_equal(pool_aim_search(NULL, &shot, 1, &count, NULL, NULL), POOL_ERR_INVALID_ARGUMENT);

@@ -47,7 +47,8 @@ enum { FIT_SPEED, FIT_PHI, FIT_THETA, FIT_A, FIT_B, FIT_T0, FIT_SHOT_PARAMS };
 /// Table parameters shared by all shots (pool_params fields, docs/physics.md).
 enum {
 	FIT_MU_SLIDE, FIT_MU_ROLL, FIT_MU_SPIN, FIT_MU_BALL, FIT_E_BALL, FIT_MU_CUSHION, FIT_E_CUSHION,
-	FIT_MU_TABLE, FIT_E_TABLE, FIT_THROW_A, FIT_THROW_B, FIT_THROW_C, FIT_CUE_END_MASS, FIT_TABLE_PARAMS
+	FIT_MU_TABLE, FIT_E_TABLE, FIT_THROW_A, FIT_THROW_B, FIT_THROW_C, FIT_CUE_END_MASS, FIT_E_CUSHION_MATHAVAN,
+	FIT_MU_CUSHION_MATHAVAN, FIT_TABLE_PARAMS
 };
 
 /// What a parameter is: its name, unit as written (degrees for phi and theta), and the range the
@@ -65,6 +66,11 @@ extern const fit_param_info fit_table_params[FIT_TABLE_PARAMS];
 
 /// The value of table parameter k in params (and a pointer to it).
 double *fit_table_field(pool_params *params, int k);
+
+/// NULL when table parameter k acts in a simulation under def's models, else the model it needs
+/// written as a scenario selects it ("\"cushion\": \"petit\""): a parameter its laws never read
+/// would leave a column of zeros in the Jacobian.
+const char *fit_table_param_needs(int k, const pool_sim_def *def);
 
 /// One observed shot: its scenario (layout, table, models, starting strike) and tracks.
 typedef struct fit_shot {
@@ -155,11 +161,11 @@ void fit_random_table(uint64_t seed, const bool *free_table, pool_params *p);
 
 /// Shot `index` of `seed`: the cue ball, an object ball 0.3 to 1.2 m away hit with a cut of up to
 /// 70 % of a full ball's offset, a third ball anywhere, a strike of 1 to 3 m/s with tip offsets
-/// within 0.4 R, on a table with the parameters `table`; recorded at rate frames/s with noise of
+/// within 0.4 R, on a table with the parameters `table` and the laws `models`; recorded at rate frames/s with noise of
 /// sd sigma; its start the default table, the direction half a degree and the speed 10 % off (at
 /// random), no spin. *truth must outlive *shot. Returns 0, or -1 (the library failed).
-int fit_synthetic_shot(uint64_t seed, long index, const pool_params *table, double rate, double sigma,
-                       fit_synthetic *truth, fit_shot *shot);
+int fit_synthetic_shot(uint64_t seed, long index, const pool_params *table, const pool_models *models,
+                       double rate, double sigma, fit_synthetic *truth, fit_shot *shot);
 
 // ---- residuals --------------------------------------------------------------------------------
 

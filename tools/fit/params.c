@@ -37,6 +37,8 @@ const fit_param_info fit_table_params[FIT_TABLE_PARAMS] = {
 	[FIT_THROW_B] = {"throw_b", "1", 0.01, 0.0, 10.0, false},
 	[FIT_THROW_C] = {"throw_c", "s/m", 0.1, 0.0, 100.0, false},
 	[FIT_CUE_END_MASS] = {"cue_end_mass", "kg", 1e-3, 1e-4, 10.0, false},
+	[FIT_E_CUSHION_MATHAVAN] = {"e_cushion_mathavan", "1", 0.01, 0.0, 1.0, false},
+	[FIT_MU_CUSHION_MATHAVAN] = {"mu_cushion_mathavan", "1", 0.01, 0.0, 10.0, false},
 };
 
 double *fit_table_field(pool_params *p, int k) {
@@ -53,7 +55,31 @@ double *fit_table_field(pool_params *p, int k) {
 	case FIT_THROW_A: return &p->throw_a;
 	case FIT_THROW_B: return &p->throw_b;
 	case FIT_THROW_C: return &p->throw_c;
+	case FIT_E_CUSHION_MATHAVAN: return &p->e_cushion_mathavan;
+	case FIT_MU_CUSHION_MATHAVAN: return &p->mu_cushion_mathavan;
 	default: return &p->cue_end_mass;
+	}
+}
+
+const char *fit_table_param_needs(int k, const pool_sim_def *def) {
+	const pool_models *m = &def->models;
+	switch (k) {
+	case FIT_MU_BALL:
+		return m->ball_ball_friction == POOL_BALL_FRICTION_CONSTANT ? NULL : "\"ball_ball_friction\": \"constant\"";
+	case FIT_THROW_A:
+	case FIT_THROW_B:
+	case FIT_THROW_C:
+		return m->ball_ball_friction == POOL_BALL_FRICTION_ALCIATORE ? NULL : "\"ball_ball_friction\": \"alciatore\"";
+	case FIT_MU_CUSHION:
+	case FIT_E_CUSHION: // Petit's law: every rail impact under it, and a ball in flight under any
+		return m->cushion == POOL_CUSHION_PETIT || def->airborne ? NULL : "\"cushion\": \"petit\"";
+	case FIT_E_CUSHION_MATHAVAN:
+	case FIT_MU_CUSHION_MATHAVAN:
+		return m->cushion == POOL_CUSHION_MATHAVAN2010 ? NULL : "\"cushion\": \"mathavan2010\"";
+	case FIT_CUE_END_MASS:
+		return m->squirt == POOL_SQUIRT_ENDMASS ? NULL : "\"squirt\": \"endmass\"";
+	default:
+		return NULL;
 	}
 }
 
@@ -101,7 +127,8 @@ static int mark(bool *free_shot, bool *free_table, const char *name, size_t n, i
 	snprintf(shown, sizeof shown, "%.*s", (int)(n < 100 ? n : 100), name);
 	return pool_cli_usage_error(FIT_PROGRAM, "--fit: '%s' is not a parameter (speed, phi, theta, a, b, t0, "
 	                            "mu_slide, mu_roll, mu_spin, mu_ball, e_ball, mu_cushion, e_cushion, mu_table, "
-	                            "e_table, throw_a, throw_b, throw_c, cue_end_mass) or a group (strike, cue, cloth)",
+	                            "e_table, throw_a, throw_b, throw_c, cue_end_mass, e_cushion_mathavan, mu_cushion_mathavan) or a "
+	                            "group (strike, cue, cloth)",
 	                            pool_cli_arg(shown));
 }
 
@@ -128,19 +155,15 @@ int fit_problem_setup(fit_problem *pb, const char *spec) {
 	int status = fit_parse_spec(spec, pb->free_shot, pb->free_table);
 	if (status)
 		return status;
-	// A model's parameter does nothing without its model: its column of the Jacobian would be zero.
-	for (int s = 0; s < pb->shot_count; ++s) {
-		const pool_models *m = &pb->shots[s].scenario.def.models;
-		for (int k = FIT_THROW_A; k <= FIT_THROW_C; ++k)
-			if (pb->free_table[k] && m->ball_ball_friction != POOL_BALL_FRICTION_ALCIATORE)
-				return pool_cli_usage_error(FIT_PROGRAM, "--fit: %s needs the alciatore ball-ball friction "
-				                            "(\"models\": {\"ball_ball_friction\": \"alciatore\"}) in %s",
-				                            fit_table_params[k].name, pool_cli_arg(pb->shots[s].scenario_path));
-		if (pb->free_table[FIT_CUE_END_MASS] && m->squirt != POOL_SQUIRT_ENDMASS)
-			return pool_cli_usage_error(FIT_PROGRAM, "--fit: cue_end_mass needs the endmass squirt "
-			                            "(\"models\": {\"squirt\": \"endmass\"}) in %s",
-			                            pool_cli_arg(pb->shots[s].scenario_path));
-	}
+	// A parameter the shot's laws never read does nothing: its column of the Jacobian would be zero.
+	for (int s = 0; s < pb->shot_count; ++s)
+		for (int k = 0; k < FIT_TABLE_PARAMS; ++k) {
+			const char *needs = pb->free_table[k] ? fit_table_param_needs(k, &pb->shots[s].scenario.def) : NULL;
+			if (needs)
+				return pool_cli_usage_error(FIT_PROGRAM, "--fit: %s is not used by the laws of %s: it needs "
+				                            "\"models\": {%s}", fit_table_params[k].name,
+				                            pool_cli_arg(pb->shots[s].scenario_path), needs);
+		}
 	pb->table_free = 0;
 	for (int k = 0; k < FIT_TABLE_PARAMS; ++k)
 		pb->table_free += pb->free_table[k];

@@ -161,6 +161,22 @@ static int profile_side(fit_ls *ls, const double *best, double c0, int j, double
 	return status;
 }
 
+/// An interval ends where the parameter's admissible values do (fit_param_info, the tip offsets
+/// within FIT_TIP_LIMIT R): an alternative minimum whose Wald interval is wide (a side spin the
+/// tracks cannot see, held only by the tether) is "anywhere it can be", not beyond.
+static void clamp_interval(const fit_problem *pb, int j, fit_estimate *e) {
+	int shot, k;
+	const fit_param_info *info = fit_param_of(pb, j, &shot, &k);
+	double lo = info->lo, hi = info->hi;
+	if (shot >= 0 && (k == FIT_A || k == FIT_B)) {
+		const double limit = FIT_TIP_LIMIT * pb->shots[shot].scenario.def.params.ball_radius;
+		lo = fmax(lo, -limit);
+		hi = fmin(hi, limit);
+	}
+	e->ci_low = fmax(e->ci_low, lo);
+	e->ci_high = fmin(e->ci_high, hi);
+}
+
 int fit_intervals(fit_ls *ls, const fit_intervals_options *o, fit_solution *out, const double *minima,
                   const double *costs, int count) {
 	const fit_problem *pb = &ls->problem;
@@ -254,6 +270,8 @@ int fit_intervals(fit_ls *ls, const fit_intervals_options *o, fit_solution *out,
 			out->est[j].ci_high = fmax(out->est[j].ci_high, alt[j].ci_high);
 		}
 	}
+	for (int j = 0; status == 0 && j < pb->p; ++j)
+		clamp_interval(pb, j, &out->est[j]);
 	gsl_matrix_free(cov);
 	gsl_matrix_free(T);
 	gsl_matrix_free(shown);

@@ -44,7 +44,8 @@ void fit_random_table(uint64_t seed, const bool *free_table, pool_params *p) {
 		[FIT_MU_BALL] = {0.03, 0.08}, [FIT_E_BALL] = {0.92, 0.98},   [FIT_MU_CUSHION] = {0.1, 0.3},
 		[FIT_E_CUSHION] = {0.7, 0.9}, [FIT_MU_TABLE] = {0.1, 0.3},   [FIT_E_TABLE] = {0.5, 0.7},
 		[FIT_THROW_A] = {0.005, 0.015}, [FIT_THROW_B] = {0.08, 0.13}, [FIT_THROW_C] = {0.8, 1.4},
-		[FIT_CUE_END_MASS] = {0.005, 0.012}};
+		[FIT_CUE_END_MASS] = {0.005, 0.012}, [FIT_E_CUSHION_MATHAVAN] = {0.9, 0.99},
+		[FIT_MU_CUSHION_MATHAVAN] = {0.1, 0.25}};
 	for (int k = 0; k < FIT_TABLE_PARAMS; ++k)
 		if (free_table[k])
 			*fit_table_field(p, k) = between(r, range[k][0], range[k][1]);
@@ -76,12 +77,13 @@ static void random_shot(rng *r, const pool_sim_def *def, pool_ball_state balls[F
 	}
 }
 
-int fit_synthetic_shot(uint64_t seed, long index, const pool_params *table, double rate, double sigma,
-                       fit_synthetic *truth, fit_shot *shot) {
+int fit_synthetic_shot(uint64_t seed, long index, const pool_params *table, const pool_models *models,
+                       double rate, double sigma, fit_synthetic *truth, fit_shot *shot) {
 	rng r = {.state = seed * 0x100000001B3ULL + (uint64_t)index};
 	pool_sim_def def = pool_default_sim_def();
 	def.max_time = 20.0;
 	def.params = *table;
+	def.models = *models;
 	memset(shot, 0, sizeof *shot);
 	random_shot(&r, &def, truth->balls, &truth->strike);
 	truth->params = *table;

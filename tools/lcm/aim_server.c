@@ -6,7 +6,8 @@
 // Requests are answered one after the other, each search using every core (--threads). A request's
 // time budget counts from the moment liblcm received it (lcm_recv_buf_t.recv_utime), so time spent
 // waiting behind another request is part of it: one whose budget is gone when it comes up is
-// answered with an error, and the search gets what is left. Requests beyond --max-balls or
+// answered with an error (after its checks: a bad request hears what is wrong with it), and the
+// search gets what is left. Requests beyond --max-balls or
 // --max-samples, bad scenarios and bad options are answered with an error naming the field; a
 // datagram that is not an aim_request_t is logged and skipped. SIGINT/SIGTERM stop the server
 // after the request in hand.
@@ -126,14 +127,9 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel, const po
 	(void)channel;
 	server *sv = user;
 	const double arrived = (double)rbuf->recv_utime;
-	double budget = rq->time_budget > 0.0 ? fmin(rq->time_budget, sv->max_budget) : sv->default_budget;
-	double left = budget - (now_us() - arrived) * 1e-6;
-	if (left <= 0.0) {
-		char err[160];
-		snprintf(err, sizeof err, "time_budget: %g s ran out while the request waited", budget);
-		reply_error(sv, rq->request_id, arrived, err);
-		return;
-	}
+	const double budget = rq->time_budget > 0.0 ? fmin(rq->time_budget, sv->max_budget) : sv->default_budget;
+	// A bad request is told what is wrong with it, even when its time ran out in the queue (the
+	// checks take microseconds).
 	char err[512];
 	aim_position position;
 	if (aim_position_parse(rq->scenario_json, strlen(rq->scenario_json), &position, err, sizeof err) != 0) {
@@ -141,7 +137,20 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel, const po
 		return;
 	}
 	pool_aim_def def;
-	if (apply_request(sv, rq, &position, &def, left, err, sizeof err) != 0) {
+	pool_error invalid = {{0}};
+	int bad = apply_request(sv, rq, &position, &def, budget, err, sizeof err);
+	if (!bad && pool_aim_def_validate(&def, &invalid) != POOL_OK) {
+		snprintf(err, sizeof err, "%s", invalid.message);
+		bad = -1;
+	}
+	if (bad) {
+		reply_error(sv, rq->request_id, arrived, err);
+		aim_position_free(&position);
+		return;
+	}
+	def.time_budget = budget - (now_us() - arrived) * 1e-6;
+	if (def.time_budget <= 0.0) {
+		snprintf(err, sizeof err, "time_budget: %g s ran out while the request waited", budget);
 		reply_error(sv, rq->request_id, arrived, err);
 		aim_position_free(&position);
 		return;

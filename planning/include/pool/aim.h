@@ -93,6 +93,10 @@ typedef struct pool_aim_stats {
 /// position score.
 POOL_API pool_aim_def pool_default_aim_def(void);
 
+/// Checks a def as pool_aim_search does, without searching (a service checks a request before it
+/// waits for its turn); the message names the field.
+POOL_API pool_result pool_aim_def_validate(const pool_aim_def *def, pool_error *error);
+
 /// Searches the shots of the position and writes the best (up to capacity, and def->top), best
 /// first, into shots; *count receives how many. Errors name the field ("aim.ball: no ball has id
 /// 16", "balls[2].pos: overlaps ball 1 by ...", "aim.game: three_cushion has no pockets").
