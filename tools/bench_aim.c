@@ -49,22 +49,24 @@ static void bench(const char *name, const pool_ball_state *balls, int n, const p
 	d.ball_count = n;
 	d.top = 1;
 	d.game = game;
-	double seconds[RUNS];
+	double seconds[RUNS], cpu[RUNS];
 	pool_aim_shot shot = {0};
 	pool_aim_stats stats = {0};
 	int count = 0;
 	for (int r = 0; r < RUNS; ++r) {
-		double t0 = pool_bench_now_s();
+		double t0 = pool_bench_now_s(), c0 = pool_bench_cpu_s();
 		pool_error e;
 		if (pool_aim_search(&d, &shot, 1, &count, &stats, &e) != POOL_OK) {
 			fprintf(stderr, "pool-bench-aim: %s: %s\n", name, e.message);
 			exit(1);
 		}
 		seconds[r] = pool_bench_now_s() - t0;
+		cpu[r] = pool_bench_cpu_s() - c0;
 	}
-	pool_bench_summary s = pool_bench_summarise(seconds, RUNS);
-	printf("%-34s %2d balls: median %.3f s, min %.3f s; %d candidates, %d pot, %lld shots simulated",
-	       name, n, s.median, s.min, stats.candidates, stats.potting, stats.simulations);
+	pool_bench_summary s = pool_bench_summarise(seconds, RUNS), c = pool_bench_summarise(cpu, RUNS);
+	printf("%-34s %2d balls: median %.3f s, min %.3f s (CPU: median %.3f s, min %.3f s); %d candidates, %d pot, "
+	       "%lld shots simulated", name, n, s.median, s.min, c.median, c.min, stats.candidates, stats.potting,
+	       stats.simulations);
 	if (count)
 		printf("; best: %s ball %d into %s, p_success %.3f", pool_aim_kind_name(shot.kind), (int)shot.ball,
 		       pool_pocket_name(shot.pocket), shot.p_success);
@@ -73,8 +75,9 @@ static void bench(const char *name, const pool_ball_state *balls, int n, const p
 
 int main(void) {
 	char cpu[256];
-	printf("pool-bench-aim: %s, %ld CPUs online; pool-aim top 1, 400 samples, fastfiz noise, all CPUs, "
-	       "%d runs\n", pool_bench_cpu_model(cpu, sizeof cpu), pool_bench_cpus_online(), RUNS);
+	printf("pool-bench-aim: %s, %ld CPUs online, load %.2f; pool-aim top 1, 400 samples, fastfiz noise, all "
+	       "CPUs, %d runs; wall time, and the CPU time of every thread\n", pool_bench_cpu_model(cpu, sizeof cpu),
+	       pool_bench_cpus_online(), pool_bench_load(), RUNS);
 	pool_ball_state nine[16], fifteen[16];
 	int n9 = 0, n15 = 0;
 	for (int k = 0; k < 100 && !n9; ++k) // the first break that leaves the cue ball and the 1

@@ -1,7 +1,7 @@
 // pool-bench-fit: seconds for pool-fit on one shot and on 20 shots together. The shots are
 // pool-fit-trials' synthetic ones (fit/synthetic.c: 3 balls, 1-3 m/s, tracks at 100 Hz with 1 mm
 // of noise); one shot fits its strike (speed, phi, a, b), 20 shots their strikes and a shared
-// cloth and cushion (mu_slide, mu_roll, e_cushion: 83 parameters). Median and minimum of RUNS
+// cloth and cushion (mu_slide, mu_roll, e_cushion_mathavan: 83 parameters). Median and minimum of RUNS
 // fits each, on every core, with the machine. docs/measurements.md "pool-fit".
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,7 +10,7 @@
 #include "bench_util.h"
 #include "fit/fit.h"
 
-#define RUNS 5
+#define RUNS 3
 #define MANY 20
 
 static void bench(const char *name, int shots, const char *spec) {
@@ -28,20 +28,21 @@ static void bench(const char *name, int shots, const char *spec) {
 	if (fit_problem_setup(&pb, spec) != 0)
 		exit(1);
 	fit_options o = {.starts = 6, .max_iterations = 200, .seed = 1, .retries = 8, .quiet = getenv("POOL_BENCH_FIT_VERBOSE") == NULL};
-	double seconds[RUNS];
+	double seconds[RUNS], cpu[RUNS];
 	fit_solution sol = {0};
 	long observations = (long)(pb.n_obs / 2);
 	for (int r = 0; r < RUNS; ++r) {
 		fit_solution_free(&sol);
-		double t0 = pool_bench_now_s();
+		double t0 = pool_bench_now_s(), c0 = pool_bench_cpu_s();
 		if (fit_solve(&pb, &o, &sol) != 0)
 			exit(1);
 		seconds[r] = pool_bench_now_s() - t0;
+		cpu[r] = pool_bench_cpu_s() - c0;
 	}
-	pool_bench_summary s = pool_bench_summarise(seconds, RUNS);
-	printf("%-22s %3d parameters, %6ld observations: median %.3f s, min %.3f s; rms %.3f mm, %d starts, %s "
-	       "intervals\n", name, pb.p, observations, s.median, s.min, 1e3 * sol.rms, sol.starts,
-	       sol.profiled ? "profile" : "wald");
+	pool_bench_summary s = pool_bench_summarise(seconds, RUNS), c = pool_bench_summarise(cpu, RUNS);
+	printf("%-22s %3d parameters, %6ld observations: median %.3f s, min %.3f s (CPU: median %.3f s, min %.3f "
+	       "s); rms %.3f mm, %d starts, %s intervals\n", name, pb.p, observations, s.median, s.min, c.median,
+	       c.min, 1e3 * sol.rms, sol.starts, sol.profiled ? "profile" : "wald");
 	fit_solution_free(&sol);
 	for (int k = 0; k < shots; ++k)
 		free(pb.shots[k].obs);
@@ -51,9 +52,10 @@ static void bench(const char *name, int shots, const char *spec) {
 
 int main(void) {
 	char cpu[256];
-	printf("pool-bench-fit: %s, %ld CPUs online; tracks at 100 Hz, sigma 1 mm; %d runs\n",
-	       pool_bench_cpu_model(cpu, sizeof cpu), pool_bench_cpus_online(), RUNS);
+	printf("pool-bench-fit: %s, %ld CPUs online, load %.2f; tracks at 100 Hz, sigma 1 mm; %d runs; wall time, "
+	       "and the CPU time of every thread\n", pool_bench_cpu_model(cpu, sizeof cpu), pool_bench_cpus_online(),
+	       pool_bench_load(), RUNS);
 	bench("one shot, strike", 1, "strike");
-	bench("20 shots, one table", MANY, "strike,mu_slide,mu_roll,e_cushion");
+	bench("20 shots, one table", MANY, "strike,mu_slide,mu_roll,e_cushion_mathavan");
 	return 0;
 }

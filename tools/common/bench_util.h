@@ -19,6 +19,13 @@ typedef struct pool_bench_summary {
 /// Monotonic clock (CLOCK_MONOTONIC) in seconds, for timing runs.
 double pool_bench_now_s(void);
 
+/// CPU time of the whole process, every thread's (CLOCK_PROCESS_CPUTIME_ID), in seconds: on a
+/// machine other work shares, the work a multi-threaded run did, which its wall time is not.
+double pool_bench_cpu_s(void);
+
+/// The 1-minute load average (/proc/loadavg), -1 when unknown: how busy the machine was.
+double pool_bench_load(void);
+
 /// Sorts values[0..count) ascending in place and returns their median and minimum; count >= 1.
 pool_bench_summary pool_bench_summarise(double *values, size_t count);
 

@@ -179,6 +179,9 @@ static int shot_by_shot(const fit_problem *pb, const fit_options *o, double *x) 
 		int status = fit_solve(&one, &quiet, &sol);
 		if (status)
 			return status;
+		if (!o->quiet)
+			fprintf(stderr, "%s: shot %d alone: %d starts, rms %.3g m, %.3f s\n", FIT_PROGRAM, s, sol.starts, sol.rms,
+			        sol.seconds);
 		// The shot's values, in the joint vector's slots (the launch speed is the same quantity
 		// in both: the table's fixed parameters do not enter it).
 		memcpy(x + pb->table_free + s * pb->shot_free, sol.x, (size_t)pb->shot_free * sizeof *x);
