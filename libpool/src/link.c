@@ -34,9 +34,10 @@ static int planar(const pool_link *link) { return !link->def->airborne; }
 
 // ---- lifetime
 
-void pool_link_init(pool_link *link, const pool_sim_def *def, double dc, const pool_allocator *alloc,
-                    const pool_link_world *world) {
+void pool_link_init(pool_link *link, const pool_sim_def *def, const struct pool_table_shape *shape, double dc,
+                    const pool_allocator *alloc, const pool_link_world *world) {
 	link->def = def;
+	link->ws.shape = shape;
 	link->dc = dc;
 	link->alloc = alloc;
 	link->world = *world;

@@ -107,9 +107,10 @@ typedef struct pool_link {
 	                           ///< nothing, and the shot stops (POOL_STOP_MAX_EVENTS)
 } pool_link;
 
-/// Binds LINK to its simulation's def (kept by address: the world's), allocator and world.
-void pool_link_init(pool_link *link, const pool_sim_def *def, double dc, const pool_allocator *alloc,
-                    const pool_link_world *world);
+/// Binds LINK to its simulation's def and table shape (kept by address: the world's; the
+/// shape's parts are the steps' cushion contacts with pockets "jaws"), allocator and world.
+void pool_link_init(pool_link *link, const pool_sim_def *def, const struct pool_table_shape *shape, double dc,
+                    const pool_allocator *alloc, const pool_link_world *world);
 
 /// A new shot: no ball, no cluster, no warm start (the same input gives the same bits).
 void pool_link_clear(pool_link *link);
