@@ -27,6 +27,14 @@ static pool_result record(const pool_link *link, double t, pool_event_type type,
                           int m) {
 	return link->world.record(link->world.ctx, t, type, pocket, balls, m);
 }
+// Records an event at t of balls[0..m), which started new segments there, and has their
+// contacts predicted again (whatever the record's outcome: the segments have changed).
+static pool_result record_changed(const pool_link *link, double t, pool_event_type type, pool_pocket pocket,
+                                  const int *balls, int m) {
+	const pool_result r = record(link, t, type, pocket, balls, m);
+	link->world.changed(link->world.ctx, balls, m, t);
+	return r;
+}
 
 static int in_play(pool_motion motion) { return motion != POOL_MOTION_POCKETED && motion != POOL_MOTION_OFF_TABLE; }
 
@@ -220,7 +228,7 @@ static void join(pool_link *link, int i, int c, double t) {
 	begin_segment(link, i, &s, t);
 }
 
-// pool_link_pressed_pair with the two balls' accelerations given.
+// pressed_pair with the two balls' accelerations given.
 static int pressed_with(const pool_ball_state *s, pool_vec3 a0, pool_vec3 a1) {
 	const pool_vec3 d = pool_v3_sub(s[0].pos, s[1].pos);
 	const double dist = pool_v3_len(d);
@@ -244,7 +252,11 @@ static pool_vec3 free_accel(const pool_link *link, const pool_ball_state *s) {
 	return pool_motion_accel(&link->def->params, &f);
 }
 
-int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s) {
+// 1 when two touching balls s[0..2) (closed-form states at the contact) are pressed together:
+// their normal approach acceleration, the difference of their free accelerations (a linked
+// ball's: as if released, gravity above the cloth) along the normal less the curvature of their
+// relative path (|v_t|^2 / 2R parts them), is positive.
+static int pressed_pair(const pool_link *link, const pool_ball_state *s) {
 	return pressed_with(s, free_accel(link, &s[0]), free_accel(link, &s[1]));
 }
 
@@ -391,9 +403,7 @@ static pool_result cut_cluster(pool_link *link, int c, double t) {
 	unsettle(link, c);
 	int *idx = link->members;
 	const int m = members(link, c, idx);
-	const pool_result r = record(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
-	link->world.changed(link->world.ctx, idx, m, t);
-	return r;
+	return record_changed(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
 }
 
 pool_result pool_link_cut(pool_link *link, const int *inv, int m, double t) {
@@ -563,9 +573,7 @@ static pool_result release(pool_link *link, const int *idx, int m, double t) {
 		link->loose[idx[k]] = 0;
 		begin_segment(link, idx[k], &s[k], t);
 	}
-	const pool_result r = record(link, t, POOL_EVENT_LINK_END, POOL_POCKET_NONE, idx, m);
-	link->world.changed(link->world.ctx, idx, m, t);
-	return r;
+	return record_changed(link, t, POOL_EVENT_LINK_END, POOL_POCKET_NONE, idx, m);
 }
 
 // Members past a rail's contact line inside a pocket mouth at t (the step's LCP has no rail
@@ -585,8 +593,7 @@ static pool_result pocket_strays(pool_link *link, int c, double t) {
 		pool_take_out_of_play(&s, POOL_MOTION_POCKETED);
 		link->cluster_of[k] = -1;
 		begin_segment(link, k, &s, t);
-		const pool_result r = record(link, t, POOL_EVENT_POCKET, pocket, &k, 1);
-		link->world.changed(link->world.ctx, &k, 1, t);
+		const pool_result r = record_changed(link, t, POOL_EVENT_POCKET, pocket, &k, 1);
 		if (r)
 			return r;
 	}
@@ -868,9 +875,7 @@ pool_result pool_link_step_event(pool_link *link, int i, double t) {
 		}
 		begin_segment(link, idx[k], &s[k], t);
 	}
-	const pool_result rec = record(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
-	link->world.changed(link->world.ctx, idx, m, t);
-	return rec;
+	return record_changed(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
 }
 
 // A contact inside cluster c (two of its balls, or one and a rail's nose, touching) closing
@@ -951,7 +956,7 @@ static int parting(const pool_ball_state *s) {
 
 int pool_link_take_pressed(pool_link *link, pool_event_type type, const int *inv, const pool_ball_state *s, int m,
                            double t, pool_result *result) {
-	if (!(type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pool_link_pressed_pair(link, s))))
+	if (!(type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pressed_pair(link, s))))
 		return 0;
 	const int c0 = link->cluster_of[inv[0]];
 	if (c0 >= 0 && (m == 1 || c0 == link->cluster_of[inv[1]]))

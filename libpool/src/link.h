@@ -139,12 +139,6 @@ pool_result pool_link_cut(pool_link *link, const int *inv, int m, double t);
 /// the shot stops there.
 static inline int pool_link_starved(const pool_link *link) { return link->starved; }
 
-/// 1 when two touching balls s[0..2) (closed-form states at the contact) are pressed together:
-/// their normal approach acceleration, the difference of their free accelerations (a linked
-/// ball's: as if released, gravity above the cloth) along the normal less the curvature of
-/// their relative path (|v_t|^2 / 2R parts them), is positive.
-int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s);
-
 /// An event of the balls inv[0..m) (evolved to t, in s[0..m)) found them touching and pressed,
 /// and Petit's law gave no impulse: resting contact the impulses cannot hold. Returns 1 when
 /// LINK takes it (forms a cluster at t, *result its outcome), 0 when it is not LINK's (the

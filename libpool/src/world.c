@@ -504,7 +504,8 @@ static int step(pool_sim *sim) {
 		return 0;
 	if (!sim->predicted)
 		pool_schedule_predict_all(sim);
-	const pool_event_key *top = sim->n > 0 ? &sim->keys[pool_event_queue_top(&sim->queue)] : NULL;
+	const int slot = sim->n > 0 ? pool_schedule_next(sim) : -1;
+	const pool_event_key *top = slot >= 0 ? &sim->keys[slot] : NULL;
 	if (!top || !isfinite(top->time)) {
 		// Nothing will happen again: no ball in the air, none moving (a flight always ends, and
 		// a prediction cut at max_time reports an event beyond it, pool_schedule_beyond).
@@ -539,7 +540,7 @@ static int step(pool_sim *sim) {
 	// never silently wrong velocities.
 	const int recorded = sim->history.n_events;
 	const double now = top->time;
-	const pool_result r = process(sim, pool_event_queue_top(&sim->queue));
+	const pool_result r = process(sim, slot);
 	if (pool_link_starved(&sim->link)) {
 		// LINK needed an event the limit has no room for and did nothing: the event limit cut
 		// the shot here (whatever comes next, even after max_time).
@@ -583,9 +584,9 @@ pool_result pool_sim_run_until(pool_sim *sim, double t) {
 			return POOL_OK;
 		if (!sim->predicted)
 			pool_schedule_predict_all(sim);
-		if (sim->n > 0 && sim->keys[pool_event_queue_top(&sim->queue)].time > t &&
-		    isfinite(sim->keys[pool_event_queue_top(&sim->queue)].time) &&
-		    sim->keys[pool_event_queue_top(&sim->queue)].time <= sim->def.max_time)
+		// The next event lies after t (and is one the shot will process): the states at t are known.
+		const double next = sim->n > 0 ? sim->keys[pool_schedule_next(sim)].time : INFINITY;
+		if (next > t && isfinite(next) && next <= sim->def.max_time)
 			break;
 		int r = pool_sim_step(sim);
 		if (r < 0)
