@@ -441,6 +441,7 @@ static pool_result link_begin(pool_link *link, const int *seed, int m, double t)
 	if (c < 0) {
 		for (c = 0; c < link->n && link->clusters[c].active; ++c) {
 		}
+		POOL_ASSERT(c < link->n); // a cluster has a ball: there are never more than balls
 		memset(&link->clusters[c], 0, sizeof link->clusters[c]);
 		link->stats.clusters++;
 	}
@@ -737,6 +738,7 @@ static int drive_in(pool_link *link, int c, const pool_ball_state *s, int m, dou
 
 pool_result pool_link_step_event(pool_link *link, int i, double t) {
 	const int c = link->cluster_of[i];
+	POOL_ASSERT(c >= 0 && link->clusters[c].active); // a step event is a linked ball's
 	pool_cluster *cl = &link->clusters[c];
 	// The balls of the next step (gathered afresh at every step), and the room for the events
 	// this one records: the cuts of the clusters it takes in, the pocketed strays, the loose
