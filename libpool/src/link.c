@@ -13,6 +13,7 @@
 #include "memory.h"
 #include "motion.h"
 #include "predict.h"
+#include "table_shape.h"
 #include "vec3.h"
 
 // ---- the world, as LINK may ask it
@@ -880,7 +881,35 @@ pool_result pool_link_step_event(pool_link *link, int i, double t) {
 	return record_changed(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
 }
 
-// A contact inside cluster c (two of its balls, or one and a rail's nose, touching) closing
+// A ball within touch of the cushion and driven into it faster than the cluster's own forces close
+// a contact. With pockets "jaws" the cushion is the nose curve, each part whose span the centre
+// faces (the parts the step's contacts are, link_step.c): a ball over a mouth has no rail to be
+// driven into, and one against a facing or jaw is driven along that part's normal. The other
+// models keep the four rails' contact lines.
+static int driven_into_cushion(const pool_link *link, const pool_ball_state *s) {
+	const pool_table_shape *shape = link->ws.shape;
+	if (shape && shape->table.pockets == POOL_POCKETS_JAWS) {
+		const double R = link->def->params.ball_radius;
+		for (int k = 0; k < shape->n_parts; ++k) {
+			if (!pool_shape_in_span(shape, k, s->pos))
+				continue;
+			const double gap = pool_v3_len(pool_v3_sub(s->pos, pool_shape_nearest(shape, k, s->pos))) - R;
+			if (gap <= POOL_LINK_TOUCH_GAP &&
+			    -pool_v3_dot(s->vel, pool_shape_normal(shape, k, s->pos)) > POOL_LINK_IMPACT_SPEED)
+				return 1;
+		}
+		return 0;
+	}
+	pool_rail rails[4];
+	pool_vec3 into[4];
+	const int near = pool_table_cushions_near(&link->def->table, link->dc, s->pos, POOL_LINK_TOUCH_GAP, rails, into);
+	for (int k = 0; k < near; ++k)
+		if (pool_v3_dot(s->vel, into[k]) > POOL_LINK_IMPACT_SPEED)
+			return 1;
+	return 0;
+}
+
+// A contact inside cluster c (two of its balls, or one and the cushion, touching) closing
 // faster than POOL_LINK_IMPACT_SPEED at t: a hit from outside passed on into the cluster.
 static int hit_inside(pool_link *link, int c, double t) {
 	const double reach = 2.0 * link->def->params.ball_radius + POOL_LINK_TOUCH_GAP;
@@ -897,12 +926,8 @@ static int hit_inside(pool_link *link, int c, double t) {
 			    pool_closing_speed(s[a].pos, s[a].vel, s[b].pos, s[b].vel) > POOL_LINK_IMPACT_SPEED)
 				return 1;
 		}
-		pool_rail rails[4];
-		pool_vec3 into[4];
-		const int near = pool_table_cushions_near(&link->def->table, link->dc, s[a].pos, POOL_LINK_TOUCH_GAP, rails, into);
-		for (int k = 0; k < near; ++k)
-			if (pool_v3_dot(s[a].vel, into[k]) > POOL_LINK_IMPACT_SPEED)
-				return 1;
+		if (driven_into_cushion(link, &s[a]))
+			return 1;
 	}
 	return 0;
 }
