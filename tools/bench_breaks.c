@@ -105,7 +105,9 @@ static int run_break(pool_sim *sim, const pool_sim_def *def, const pool_ball_sta
 	const pool_result r = pool_sim_run(sim);
 	out->seconds = pool_bench_now_s() - t0;
 	if (r != POOL_OK)
-		return fprintf(stderr, "%s: the break failed: %s\n", PROGRAM, pool_result_str(r)), -1;
+		return fprintf(stderr, "%s: the break failed: %s\n", PROGRAM,
+		               pool_sim_last_error(sim)[0] ? pool_sim_last_error(sim) : pool_result_str(r)),
+		       -1;
 	int count;
 	const pool_event *ev = pool_sim_events(sim, &count);
 	out->events = count;

@@ -78,13 +78,9 @@ int main(void) {
 	for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; ++k) {
 		const scene *sc = &scenes[k];
 		pool_sim_def def = pool_default_sim_def();
-		if (sc->rules == POOL_GAME_THREE_CUSHION) { // the carom table of pool-game
-			def.table.length = 2.84;
-			def.table.width = 1.42;
-			def.table.cushion_height = 0.037;
-			def.table.corner_mouth = def.table.side_mouth = 0.0;
-			def.params.ball_radius = 0.03075;
-			def.params.ball_mass = 0.21;
+		if (sc->rules == POOL_GAME_THREE_CUSHION) { // the carom table and balls of pool-game
+			pool_table_preset("carom", &def.table);
+			pool_params_preset("carom", &def.params);
 		}
 		pool_sim *sim = NULL;
 		pool_sim_create(&def, &sim, NULL);

@@ -384,12 +384,12 @@ def judge(sim, state):
 # ---- setting up tables --------------------------------------------------------------------------
 
 def carom_sim_def():
-    """The carom table three cushion is played on, as pool-game builds it: 2.84 x 1.42 m, nose
-    37 mm, no pocket mouths, balls of 61.5 mm and 210 g (a SimDef)."""
-    d = _ffi.load().pool_default_sim_def()
-    d.table.length, d.table.width, d.table.cushion_height = 2.84, 1.42, 0.037
-    d.table.corner_mouth = d.table.side_mouth = 0.0
-    d.params.ball_radius, d.params.ball_mass = 0.03075, 0.21
+    """The carom table three cushion is played on, as pool-game builds it: the "carom" preset
+    (2.84 x 1.42 m, nose 37 mm, pockets "none") with its balls, 61.5 mm and 210 g (a SimDef)."""
+    lib = _ffi.load()
+    d = lib.pool_default_sim_def()
+    lib.pool_table_preset(b"carom", byref(d.table))
+    lib.pool_params_preset(b"carom", byref(d.params))
     return d
 
 

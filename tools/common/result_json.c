@@ -245,6 +245,49 @@ static bool write_samples(pool_jw *w, const pool_sim *sim, const pool_event *eve
 	return true;
 }
 
+// The shot's setup as the result writes it: "table" (its pocket model and, with "jaws", its
+// geometry, cut angles in degrees), "ball_radius", "params" and "models".
+void pool_jw_sim_setup(pool_jw *w, const pool_sim_def *def) {
+	const pool_table_def *t = &def->table;
+	pool_jw_key(w, "table");
+	pool_jw_object(w, true);
+	pool_jw_key(w, "length");
+	pool_jw_number(w, t->length);
+	pool_jw_key(w, "width");
+	pool_jw_number(w, t->width);
+	pool_jw_key(w, "cushion_height");
+	pool_jw_number(w, t->cushion_height);
+	pool_jw_key(w, "corner_mouth");
+	pool_jw_number(w, t->corner_mouth);
+	pool_jw_key(w, "side_mouth");
+	pool_jw_number(w, t->side_mouth);
+	pool_jw_key(w, "pockets");
+	pool_jw_string(w, pool_pockets_model_name(t->pockets));
+	if (t->pockets == POOL_POCKETS_JAWS) {
+		// The nose curve's geometry, as the scenario names it (angles in degrees).
+		const struct {
+			const char *name;
+			double value;
+		} jaws[] = {
+			{"corner_cut_angle", t->corner_cut_angle * 180.0 / 3.14159265358979323846},
+			{"side_cut_angle", t->side_cut_angle * 180.0 / 3.14159265358979323846},
+			{"corner_jaw_radius", t->corner_jaw_radius}, {"side_jaw_radius", t->side_jaw_radius},
+			{"corner_shelf", t->corner_shelf}, {"side_shelf", t->side_shelf},
+			{"corner_hole_radius", t->corner_hole_radius}, {"side_hole_radius", t->side_hole_radius},
+		};
+		for (size_t k = 0; k < sizeof jaws / sizeof jaws[0]; ++k) {
+			pool_jw_key(w, jaws[k].name);
+			pool_jw_number(w, jaws[k].value);
+		}
+	}
+	pool_jw_end(w, '}');
+	pool_jw_key(w, "ball_radius");
+	pool_jw_number(w, def->params.ball_radius);
+	write_params(w, &def->params);
+	// Always: a result says which laws made it, whatever a reader's defaults are.
+	pool_jw_models(w, &def->models);
+}
+
 char *pool_result_json(const pool_sim *sim, const pool_result_options *options) {
 	pool_result_options defaults = {0};
 	if (!options)
@@ -267,46 +310,8 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	pool_jw_object(&w, false);
 	pool_jw_key(&w, "format");
 	pool_jw_string(&w, "libpool-result/1");
-	if (options->def) {
-		const pool_table_def *t = &options->def->table;
-		pool_jw_key(&w, "table");
-		pool_jw_object(&w, true);
-		pool_jw_key(&w, "length");
-		pool_jw_number(&w, t->length);
-		pool_jw_key(&w, "width");
-		pool_jw_number(&w, t->width);
-		pool_jw_key(&w, "cushion_height");
-		pool_jw_number(&w, t->cushion_height);
-		pool_jw_key(&w, "corner_mouth");
-		pool_jw_number(&w, t->corner_mouth);
-		pool_jw_key(&w, "side_mouth");
-		pool_jw_number(&w, t->side_mouth);
-		pool_jw_key(&w, "pockets");
-		pool_jw_string(&w, pool_pockets_model_name(t->pockets));
-		if (t->pockets == POOL_POCKETS_JAWS) {
-			// The nose curve's geometry, as the scenario names it (angles in degrees).
-			const struct {
-				const char *name;
-				double value;
-			} jaws[] = {
-				{"corner_cut_angle", t->corner_cut_angle * 180.0 / 3.14159265358979323846},
-				{"side_cut_angle", t->side_cut_angle * 180.0 / 3.14159265358979323846},
-				{"corner_jaw_radius", t->corner_jaw_radius}, {"side_jaw_radius", t->side_jaw_radius},
-				{"corner_shelf", t->corner_shelf}, {"side_shelf", t->side_shelf},
-				{"corner_hole_radius", t->corner_hole_radius}, {"side_hole_radius", t->side_hole_radius},
-			};
-			for (size_t k = 0; k < sizeof jaws / sizeof jaws[0]; ++k) {
-				pool_jw_key(&w, jaws[k].name);
-				pool_jw_number(&w, jaws[k].value);
-			}
-		}
-		pool_jw_end(&w, '}');
-		pool_jw_key(&w, "ball_radius");
-		pool_jw_number(&w, options->def->params.ball_radius);
-		write_params(&w, &options->def->params);
-		// Always: a result says which laws made it, whatever a reader's defaults are.
-		pool_jw_models(&w, &options->def->models);
-	}
+	if (options->def)
+		pool_jw_sim_setup(&w, options->def);
 	// Every ball at t = 0: with the events' after-states, the start of each closed-form segment
 	// (docs/interfaces.md), from which a reader (pool-view) evaluates any instant exactly.
 	if (balls > 0 && pool_sim_state_at(sim, 0.0, final_states) != POOL_OK) {

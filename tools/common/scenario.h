@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "json_writer.h"
 #include "pool/game.h"
 #include "pool/pool.h"
 
@@ -64,6 +65,11 @@ typedef struct pool_result_options {
 	const pool_game_state *game; ///< optional; when set, the shot is judged under these rules and
 	                             ///< "game" is written after "stats" (docs/interfaces.md "Games")
 } pool_result_options;
+
+/// The shot's setup as a result file carries it, as keys of the object being written: "table" (the
+/// pocket model and, with "jaws", its geometry, cut angles in degrees), "ball_radius", "params",
+/// "models" (docs/interfaces.md "Result file").
+void pool_jw_sim_setup(pool_jw *w, const pool_sim_def *def);
 
 /// The libpool-result/1 document of a finished (or stopped) simulation, malloc'd, NUL-terminated;
 /// NULL on allocation failure. Byte-identical for identical simulations.

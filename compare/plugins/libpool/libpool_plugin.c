@@ -31,8 +31,11 @@ typedef struct libpool_engine {
 	char error[256];         // last failure
 } libpool_engine;
 
+// A failed run: what the library says it met (pool_sim_last_error: a LINK step's unsolved LCP,
+// memory running out...), else the code's name.
 static int fail(libpool_engine *e, pool_result r) {
-	snprintf(e->error, sizeof e->error, "libpool: %s", pool_result_str(r));
+	const char *said = pool_sim_last_error(e->sim);
+	snprintf(e->error, sizeof e->error, "libpool: %s", said[0] ? said : pool_result_str(r));
 	return -1;
 }
 
