@@ -2,7 +2,7 @@
 // pool-fit-trials' synthetic ones (fit/synthetic.c: 3 balls, 1-3 m/s, tracks at 100 Hz with 1 mm
 // of noise); one shot fits its strike (speed, phi, a, b), 20 shots their strikes and a shared
 // cloth and cushion (mu_slide, mu_roll and the cushion's restitution: 83 parameters). Median and
-// minimum of --runs fits each (default 3), on every core, with the machine, under --models (default
+// minimum of --runs fits each (default 3; --shots: other than 20 shots together), on every core, with the machine, under --models (default
 // or thesis: the default cushion integrates each impact in 128 steps, so its shots cost more).
 // docs/measurements.md "pool-fit".
 #include <stdio.h>
@@ -13,7 +13,6 @@
 #include "fit/fit.h"
 
 #define RUNS_MAX 20
-#define MANY 20
 
 static void bench(const char *name, int shots, const char *spec, const pool_models *models, int runs) {
 	fit_synthetic *truth = calloc((size_t)shots, sizeof *truth);
@@ -52,7 +51,7 @@ static void bench(const char *name, int shots, const char *spec, const pool_mode
 }
 
 int main(int argc, char **argv) {
-	int runs = 3;
+	int runs = 3, many = 20;
 	const char *models_name = "default", *only = "both";
 	for (int i = 1; i < argc; i += 2) {
 		const char *v = i + 1 < argc ? argv[i + 1] : "";
@@ -60,10 +59,12 @@ int main(int argc, char **argv) {
 			runs = atoi(v);
 		else if (strcmp(argv[i], "--models") == 0 && (strcmp(v, "default") == 0 || strcmp(v, "thesis") == 0))
 			models_name = v;
+		else if (strcmp(argv[i], "--shots") == 0 && atoi(v) >= 2 && atoi(v) <= 100)
+			many = atoi(v);
 		else if (strcmp(argv[i], "--only") == 0 && (strcmp(v, "one") == 0 || strcmp(v, "many") == 0))
 			only = v;
 		else {
-			fprintf(stderr, "usage: pool-bench-fit [--runs 1-%d] [--models default|thesis] [--only one|many]\n",
+			fprintf(stderr, "usage: pool-bench-fit [--runs 1-%d] [--models default|thesis] [--only one|many] [--shots 2-100]\n",
 			        RUNS_MAX);
 			return 2;
 		}
@@ -77,8 +78,10 @@ int main(int argc, char **argv) {
 	       pool_bench_cpus_online(), pool_bench_load(), models_name, runs);
 	if (strcmp(only, "many") != 0)
 		bench("one shot, strike", 1, "strike", &models, runs);
+	char many_name[64];
+	snprintf(many_name, sizeof many_name, "%d shots, one table", many);
 	if (strcmp(only, "one") != 0)
-		bench("20 shots, one table", MANY, models.cushion == POOL_CUSHION_PETIT ? "strike,mu_slide,mu_roll,e_cushion"
+		bench(many_name, many, models.cushion == POOL_CUSHION_PETIT ? "strike,mu_slide,mu_roll,e_cushion"
 		                                                                       : "strike,mu_slide,mu_roll,e_cushion_mathavan",
 		      &models, runs);
 	return 0;

@@ -175,6 +175,9 @@ static int shot_by_shot(const fit_problem *pb, const fit_options *o, double *x) 
 		fit_options quiet = *o;
 		quiet.quiet = true;
 		quiet.profile = FIT_INTERVALS_WALD; // only the values are wanted
+		// No retries: they restart while the rms is above the tracks' noise, which a shot fitted
+		// with the table held at a wrong start cannot reach (all 8 ran on every shot, for nothing).
+		quiet.retries = 0;
 		fit_solution sol;
 		int status = fit_solve(&one, &quiet, &sol);
 		if (status)
