@@ -22,13 +22,14 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "batch_shot.h"
+#include "batch_layout.h"
+#include "pool/batch.h"
 #include "cli.h"
 #include "game_json.h"
 #include "json_writer.h"
 #include "models_json.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "text_buffer.h"
 #include "text_escape.h"
 

@@ -14,13 +14,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "batch_shot.h"
+#include "pool/batch.h"
 #include "cli.h"
 #include "game/peer.h"
 #include "game_json.h"
 #include "json_writer.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "text_escape.h"
 
 #define PROGRAM "pool-game"

@@ -17,6 +17,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "batch_layout.h"
 #include "cli.h"
 #include "read_input.h"
 #include "sensitivity/study.h"

@@ -2,7 +2,7 @@
 #include "lcm_convert.h"
 
 #include "game_json.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #include <stdio.h>
 #include <stdlib.h>

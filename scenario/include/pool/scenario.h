@@ -1,8 +1,8 @@
 // Scenario files (libpool-scenario/1) and result files (libpool-result/1): parsing, validation
 // and writing, shared by pool-sim, the comparison harness and the LCM services.
 // Uses jansson; libpool itself never parses JSON.
-#ifndef POOL_TOOLS_SCENARIO_H
-#define POOL_TOOLS_SCENARIO_H
+#ifndef POOL_SCENARIO_H
+#define POOL_SCENARIO_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -35,25 +35,25 @@ typedef struct pool_scenario {
 /// vertical velocities and refuse 3D interpenetration. A "table" may be a preset name. The
 /// library's messages about its def (def.airborne, def.max_time...) are reported with the
 /// file's names (options.airborne...).
-int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
+POOL_API int pool_scenario_parse(const char *json, size_t length, pool_scenario *scenario, char *err,
                         size_t err_size);
 
 /// Same, from a file ("-" = standard input) of at most POOL_INPUT_DEFAULT_MAX bytes (64 MiB;
 /// read_input.h). Files, pipes, FIFOs, devices and standard input are read alike.
-int pool_scenario_load_file(const char *path, pool_scenario *scenario, char *err,
+POOL_API int pool_scenario_load_file(const char *path, pool_scenario *scenario, char *err,
                             size_t err_size);
 
 /// Same with a limit of max_bytes bytes: a longer input is refused with "NAME: input is larger
 /// than the limit of N bytes" (NAME the escaped path or "standard input").
-int pool_scenario_load_file_limit(const char *path, size_t max_bytes, pool_scenario *scenario,
+POOL_API int pool_scenario_load_file_limit(const char *path, size_t max_bytes, pool_scenario *scenario,
                                   char *err, size_t err_size);
 
 /// Releases what parse allocated; safe on a zeroed or already-freed scenario.
-void pool_scenario_free(pool_scenario *scenario);
+POOL_API void pool_scenario_free(pool_scenario *scenario);
 
 /// Puts the scenario's balls and strike into a simulation (reset with the scenario's def).
 /// Creates *sim when it is NULL. Returns POOL_OK or an error with its message in err.
-pool_result pool_scenario_setup(const pool_scenario *scenario, pool_sim **sim, pool_error *err);
+POOL_API pool_result pool_scenario_setup(const pool_scenario *scenario, pool_sim **sim, pool_error *err);
 
 /// Options of the result writer.
 typedef struct pool_result_options {
@@ -67,7 +67,7 @@ typedef struct pool_result_options {
 
 /// The libpool-result/1 document of a finished (or stopped) simulation, malloc'd, NUL-terminated;
 /// NULL on allocation failure. Byte-identical for identical simulations.
-char *pool_result_json(const pool_sim *sim, const pool_result_options *options);
+POOL_API char *pool_result_json(const pool_sim *sim, const pool_result_options *options);
 
 #ifdef __cplusplus
 }

@@ -3,7 +3,7 @@
 #include "game_json.h"
 #include "json_writer.h"
 #include "models_json.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #include <math.h>
 #include <stdlib.h>

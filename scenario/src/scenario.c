@@ -2,7 +2,7 @@
 // syntax, types, unknown fields and number ranges; the physical rules (table and parameter
 // ranges, overlaps, off-table balls, strike limits) are libpool's own validators, whose messages
 // already name the field, so the rules live in one place.
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #include <jansson.h>
 #include <math.h>

@@ -2,8 +2,8 @@
 // simulation to its final states, with pool-batch's messages for strikes the library refuses.
 // Shared by pool-batch and pool-sensitivity, so a sensitivity sample and the pool-batch row of
 // the same strike are the same shot, bit for bit.
-#ifndef POOL_TOOLS_BATCH_SHOT_H
-#define POOL_TOOLS_BATCH_SHOT_H
+#ifndef POOL_BATCH_H
+#define POOL_BATCH_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -12,7 +12,7 @@
 #include "pool/game.h"
 #include "pool/noise.h"
 #include "pool/pool.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -31,34 +31,26 @@ typedef struct pool_batch_strike {
 	double a, b;  ///< m
 } pool_batch_strike;
 
-/// What pool-batch does with a layout file: reads it (at most max_input bytes), parses it and
-/// keeps the strike's phi and theta as written in degrees (the parsed scenario holds radians;
-/// 0 when the file has no strike), then checks that the balls alone set up in the library.
-/// Returns 0; or POOL_EXIT_BAD_INPUT / POOL_EXIT_INTERNAL (cli.h) with the message in err, the
-/// scenario empty.
-int pool_batch_load_layout(const char *path, size_t max_input, pool_scenario *layout,
-                           double degrees[2], char *err, size_t err_size);
-
 /// Simulates strike s on layout (whose balls are shared, read only) in *sim (created when NULL,
 /// else reset), and writes the final states (layout->ball_count of them) to final. Returns true
 /// when the shot ran; false with pool-batch's message in error when the library refused the
 /// strike (*internal false) or failed (out of memory, an internal error: *internal true).
-bool pool_batch_shoot(const pool_scenario *layout, const pool_batch_strike *s, pool_sim **sim,
+POOL_API bool pool_batch_shoot(const pool_scenario *layout, const pool_batch_strike *s, pool_sim **sim,
                       pool_ball_state *final, char *error, size_t error_size, bool *internal);
 
 /// Strike `nominal` with noise: sample `sample` of `seed` (pool_noise_normal's deviates k = 0..4
 /// for speed, phi, theta, a, b), each parameter nominal + sd * z in the file's units (phi and
 /// theta in degrees: the noise's radians divided by POOL_BATCH_DEG), exactly nominal where sd is
 /// 0, theta folded to |theta|. pool-batch --noise and pool-sensitivity draw their strikes here.
-pool_batch_strike pool_batch_noisy(const pool_batch_strike *nominal, const pool_noise *noise, uint64_t seed,
+POOL_API pool_batch_strike pool_batch_noisy(const pool_batch_strike *nominal, const pool_noise *noise, uint64_t seed,
                                    uint64_t sample);
 
 /// Judges the shot pool_batch_shoot just ran on a layout with a "game": false when the layout
 /// has none or the rules refuse the shot.
-bool pool_batch_judge(const pool_scenario *layout, const pool_sim *sim, pool_game_result *result);
+POOL_API bool pool_batch_judge(const pool_scenario *layout, const pool_sim *sim, pool_game_result *result);
 
 /// The id of the first ball the struck ball hits (ball_ball or link_begin), or false.
-bool pool_batch_first_hit(const pool_sim *sim, int32_t ball, int32_t *hit);
+POOL_API bool pool_batch_first_hit(const pool_sim *sim, int32_t ball, int32_t *hit);
 
 #ifdef __cplusplus
 }
