@@ -548,8 +548,8 @@ static int play_shot(game *g, game_peer *peer, bool *over) {
 	                                             : nominal;
 	if (!(simulated.theta >= 0.0 && simulated.theta < 90.0))
 		return shot_error(shot, "strike.theta: must be in [0, 90) degrees");
-	const pool_strike strike = {.speed = simulated.speed, .phi = simulated.phi * POOL_BATCH_DEG,
-	                            .theta = simulated.theta * POOL_BATCH_DEG, .a = simulated.a, .b = simulated.b};
+	const pool_strike strike = {.speed = simulated.speed, .phi = simulated.phi * POOL_DEGREE,
+	                            .theta = simulated.theta * POOL_DEGREE, .a = simulated.a, .b = simulated.b};
 	pool_error e;
 	pool_result r = pool_sim_strike(g->sim, simulated.ball, &strike, &e);
 	if (r != POOL_OK) {
@@ -633,9 +633,9 @@ static int play(game *g) {
 		pool_jw_key(&g->record, "speed");
 		pool_jw_number(&g->record, g->noise.speed);
 		pool_jw_key(&g->record, "phi");
-		pool_jw_number(&g->record, g->noise.phi / POOL_BATCH_DEG);
+		pool_jw_number(&g->record, g->noise.phi / POOL_DEGREE);
 		pool_jw_key(&g->record, "theta");
-		pool_jw_number(&g->record, g->noise.theta / POOL_BATCH_DEG);
+		pool_jw_number(&g->record, g->noise.theta / POOL_DEGREE);
 		pool_jw_key(&g->record, "a");
 		pool_jw_number(&g->record, g->noise.a);
 		pool_jw_key(&g->record, "b");

@@ -1,20 +1,16 @@
 // Reading a whole input document (a file, a pipe, a FIFO, a device or standard input) with a
 // size limit, so that `pool-sim /dev/zero` stops with a message instead of filling the memory.
-#ifndef POOL_TOOLS_READ_INPUT_H
-#define POOL_TOOLS_READ_INPUT_H
+#ifndef POOL_SCENARIO_READ_INPUT_H
+#define POOL_SCENARIO_READ_INPUT_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "pool/scenario.h" // POOL_INPUT_DEFAULT_MAX
+
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/// Default limit on the size of a JSON input read by the commands (64 MiB): scenarios are a few
-/// kilobytes (10000 balls, the parser's limit, are about 1 MB), and a pool-sim result of a
-/// 16-ball break sampled as finely as it can be (20000 grid instants) is under 10 MB. Parsing
-/// takes up to about 20 times the input in memory (jansson, a 60 MiB array of zeros: 1.3 GB).
-#define POOL_INPUT_DEFAULT_MAX ((size_t)64 << 20)
 
 /// Reads all of path ("-" = standard input) into a malloc'd buffer (NUL-terminated, *length
 /// bytes before the NUL). More than max_bytes bytes is an error: "NAME: input is larger than

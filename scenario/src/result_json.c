@@ -351,3 +351,5 @@ char *pool_result_json(const pool_sim *sim, const pool_result_options *options) 
 	}
 	return pool_jw_finish(&w);
 }
+
+void pool_scenario_text_free(char *text) { free(text); }

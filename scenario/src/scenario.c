@@ -16,13 +16,7 @@
 #include "read_input.h"
 #include "text_escape.h"
 
-#define POOL_PI 3.14159265358979323846
-
-// Magnitude above which a number is rejected: nothing on a pool table is 1e9 m, s or rad/s, and
-// larger values only overflow the quartic coefficients.
-#define POOL_SCENARIO_MAX_ABS 1e9
-
-static const char *const scenario_format = "libpool-scenario/1";
+static const char *const scenario_format = POOL_SCENARIO_FORMAT;
 
 typedef struct parse_ctx {
 	char *err;
@@ -163,7 +157,7 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def, const
 		if (pool_table_preset(json_string_value(table), def) != POOL_OK) {
 			char shown[POOL_ESCAPE_SHORT];
 			pool_escape_text(shown, sizeof shown, json_string_value(table), json_string_length(table));
-			return fail(ctx, "table: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft)", shown);
+			return fail(ctx, "table: unknown preset \"%s\" (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)", shown);
 		}
 		return 0;
 	}
@@ -199,8 +193,8 @@ static int parse_table(parse_ctx *ctx, json_t *table, pool_table_def *def, const
 		{"cushion_height", &def->cushion_height, 1.0},
 		{"corner_mouth", &def->corner_mouth, 1.0},
 		{"side_mouth", &def->side_mouth, 1.0},
-		{"corner_cut_angle", &def->corner_cut_angle, POOL_PI / 180.0},
-		{"side_cut_angle", &def->side_cut_angle, POOL_PI / 180.0},
+		{"corner_cut_angle", &def->corner_cut_angle, POOL_DEGREE},
+		{"side_cut_angle", &def->side_cut_angle, POOL_DEGREE},
 		{"corner_jaw_radius", &def->corner_jaw_radius, 1.0},
 		{"side_jaw_radius", &def->side_jaw_radius, 1.0},
 		{"corner_shelf", &def->corner_shelf, 1.0},
@@ -427,6 +421,7 @@ static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
 	if (get_int(ctx, ball, "strike.ball", INT32_MIN, INT32_MAX, &id))
 		return -1;
 	s->strike_ball = (int)id;
+	s->written = (pool_batch_strike){.ball = (int32_t)id};
 	int found = -1;
 	for (int i = 0; i < s->ball_count; ++i)
 		if (s->balls[i].id == id)
@@ -439,15 +434,17 @@ static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
 	memset(&s->strike, 0, sizeof s->strike);
 	if (get_number(ctx, speed, "strike.speed", &s->strike.speed))
 		return -1;
+	s->written.speed = s->strike.speed;
 	struct {
 		const char *name;
 		double *field;
+		double *written; // the value as the file gives it
 		double scale;
 	} optional[] = {
-		{"phi", &s->strike.phi, POOL_PI / 180.0},
-		{"theta", &s->strike.theta, POOL_PI / 180.0},
-		{"a", &s->strike.a, 1.0},
-		{"b", &s->strike.b, 1.0},
+		{"phi", &s->strike.phi, &s->written.phi, POOL_DEGREE},
+		{"theta", &s->strike.theta, &s->written.theta, POOL_DEGREE},
+		{"a", &s->strike.a, &s->written.a, 1.0},
+		{"b", &s->strike.b, &s->written.b, 1.0},
 	};
 	for (size_t i = 0; i < sizeof optional / sizeof optional[0]; ++i) {
 		json_t *v = json_object_get(strike, optional[i].name);
@@ -459,6 +456,7 @@ static int parse_strike(parse_ctx *ctx, json_t *strike, pool_scenario *s) {
 		// The library checks the same range in radians; say it in the file's unit.
 		if (optional[i].field == &s->strike.theta && !(x >= 0.0 && x < 90.0))
 			return fail(ctx, "strike.theta: must be in [0, 90) degrees");
+		*optional[i].written = x;
 		*optional[i].field = x * optional[i].scale;
 	}
 	s->has_strike = true;
@@ -675,9 +673,8 @@ static int parse_document(parse_ctx *ctx, json_t *root, pool_scenario *s) {
 		return fail(ctx, "balls: missing");
 	if (!json_is_array(balls) || json_array_size(balls) == 0)
 		return fail(ctx, "balls: must be a non-empty array");
-	// The overlap check below is quadratic; no table holds more than a few dozen balls anyway.
-	if (json_array_size(balls) > 10000)
-		return fail(ctx, "balls: too many balls (limit 10000)");
+	if (json_array_size(balls) > POOL_SCENARIO_MAX_BALLS)
+		return fail(ctx, "balls: too many balls (limit %d)", POOL_SCENARIO_MAX_BALLS);
 	s->balls = calloc(json_array_size(balls), sizeof *s->balls);
 	if (!s->balls)
 		return fail(ctx, "balls: out of memory");

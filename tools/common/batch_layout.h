@@ -1,5 +1,5 @@
-// A batch's layout file as pool-batch and pool-sensitivity read it: the scenario, the strike's
-// angles as written, and the exit status of a command when it cannot be used.
+// A batch's layout file as pool-batch and pool-sensitivity read it: the scenario, and the exit
+// status of a command when it cannot be used.
 #ifndef POOL_TOOLS_BATCH_LAYOUT_H
 #define POOL_TOOLS_BATCH_LAYOUT_H
 
@@ -11,12 +11,11 @@
 extern "C" {
 #endif
 
-/// Reads a layout file (at most max_input bytes), parses it and keeps the strike's phi and
-/// theta as written in degrees (0 when the file has no strike), then checks that the balls alone
+/// Reads a layout file (at most max_input bytes) and parses it, then checks that the balls alone
 /// set up in the library. Returns 0; or POOL_EXIT_BAD_INPUT / POOL_EXIT_INTERNAL (cli.h) with
 /// the message in err, the scenario empty.
-int pool_batch_load_layout(const char *path, size_t max_input, pool_scenario *layout,
-                           double degrees[2], char *err, size_t err_size);
+int pool_batch_load_layout(const char *path, size_t max_input, pool_scenario *layout, char *err,
+                           size_t err_size);
 
 #ifdef __cplusplus
 }
