@@ -1,7 +1,8 @@
-# Installs libpool into a scratch prefix, then builds and runs a tiny program against it as a
-# user does: a CMake project through find_package(libpool) (static libpool::pool), and the same
-# source compiled with `cc $(pkg-config --cflags --libs libpool)` (shared libpool.so, found at run
-# time through the .pc file's rpath, with LD_LIBRARY_PATH unset).
+# Installs libpool into a scratch prefix, then builds and runs tiny programs against it as a
+# user does: a CMake project through find_package(libpool) (static libpool::pool, pool_games and
+# pool_scenario), and the same sources compiled with `cc $(pkg-config --cflags --libs libpool)`
+# and `... libpool_scenario` (shared libraries, found at run time through the .pc files' rpath,
+# with LD_LIBRARY_PATH unset).
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix --component Unspecified
   RESULT_VARIABLE rc)
@@ -26,6 +27,12 @@ execute_process(COMMAND ${WORK_DIR}/build/consumer_games RESULT_VARIABLE rc OUTP
 message(STATUS "find_package: ${out}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the find_package games consumer failed: ${rc}")
+endif()
+
+execute_process(COMMAND ${WORK_DIR}/build/consumer_scenario RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message(STATUS "find_package: ${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the find_package scenario consumer failed: ${rc} ${err}")
 endif()
 
 # pkg-config, as the README's one-line build does it.
@@ -58,4 +65,22 @@ execute_process(COMMAND ${WORK_DIR}/consumer_pc RESULT_VARIABLE rc OUTPUT_VARIAB
 message(STATUS "pkg-config: ${out}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the pkg-config consumer failed: ${rc} ${err}")
+endif()
+
+# The scenario library through its own pkg-config file (libpool_scenario.pc requires libpool.pc).
+execute_process(COMMAND ${PKG_CONFIG} --cflags --libs libpool_scenario OUTPUT_VARIABLE flags
+  OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "pkg-config --cflags --libs libpool_scenario failed")
+endif()
+separate_arguments(flags UNIX_COMMAND "${flags}")
+execute_process(COMMAND ${CC} -std=c11 ${SOURCE_DIR}/tests/consumer/project/scenario.c ${flags}
+  -o ${WORK_DIR}/consumer_scenario_pc RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cc with pkg-config's flags for libpool_scenario (${flags}) failed")
+endif()
+execute_process(COMMAND ${WORK_DIR}/consumer_scenario_pc RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message(STATUS "pkg-config: ${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the pkg-config scenario consumer failed: ${rc} ${err}")
 endif()
