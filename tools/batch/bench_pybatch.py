@@ -3,7 +3,7 @@
 
 Usage: PYTHONPATH=python LIBPOOL_PATH=build/release/libpool/libpool.so \
        .venv/bin/python tools/batch/bench_pybatch.py [--bin DIR] [--runs R] [--shots N]
-                                                    [--threads T] [--work DIR]
+                                                    [--threads T] [--work DIR] [--ranges SPEC]
 
 The post-break table and the strikes of tools/batch/bench_batch.py (pool-batch --random N --seed 1
 with its ranges). pool-batch is timed as there (wall time of the whole process, CSV to /dev/null);
@@ -33,20 +33,23 @@ def main():
     parser.add_argument("--shots", type=int, default=40000)
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--work", default="/tmp")
+    parser.add_argument("--ranges", default=RANGES,
+                        help="pool-batch --ranges of the strikes (default: %(default)s); slow "
+                             "strikes (speed=0.1:0.3) leave mostly the cost around each shot")
     a = parser.parse_args()
     import libpool.batch
     batch = os.path.join(a.bin, "pool-batch")
     _, post, nballs = bench_batch.post_break_layout(a.bin, a.work)
     rows_path = os.path.join(a.work, "bench_pybatch.csv")
-    base = [batch, post, "--random", str(a.shots), "--seed", "1", "--ranges", RANGES,
+    base = [batch, post, "--random", str(a.shots), "--seed", "1", "--ranges", a.ranges,
             "--no-progress"]
     subprocess.run(base + ["-o", rows_path], check=True)
     with open(rows_path) as f:
         strikes = [(int(r["ball"]), float(r["speed"]), float(r["phi"]), float(r["theta"]),
                     float(r["a"]), float(r["b"])) for r in csv.DictReader(f)]
     print("machine: %s; load average before: %s" % (bench_batch.machine(), bench_batch.load()))
-    print("post-break table (%d balls), %d random shots, %d runs each; library %s"
-          % (nballs, a.shots, a.runs, libpool.library_path()))
+    print("post-break table (%d balls), %d random shots (%s), %d runs each; library %s"
+          % (nballs, a.shots, a.ranges, a.runs, libpool.library_path()))
     for t in sorted({1, a.threads}):
         c_times, py_times = [], []
         for _ in range(a.runs):  # alternated, so a change of load hits both alike
