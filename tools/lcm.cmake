@@ -1,5 +1,5 @@
-# LCM services: message conversion, pool-shot-server, pool-lcm-subscribe, the load benchmark,
-# and pool-sim's --lcm-url / --playback (tools/lcm/sim_publish.c, compiled into pool-sim only when
+# LCM services: message conversion, pool-shot-server, pool-lcm-subscribe (its load benchmark is
+# bench/lcm.cmake's) and pool-sim's --lcm-url / --playback (tools/lcm/sim_publish.c, compiled into pool-sim only when
 # LCM is built, so pool-sim builds without it). The message types come from lcm_types/
 # (target pool_lcm_c). Deferred to the end of tools/CMakeLists.txt because pool_tools and
 # pool-sim are defined by other tools/*.cmake parts.
@@ -27,9 +27,6 @@ function(pool_lcm_tools_setup)
 
   add_executable(pool-lcm-subscribe ${dir}/subscribe.c)
   target_link_libraries(pool-lcm-subscribe PRIVATE pool_lcm_tools)
-
-  add_executable(pool-bench-shot-server ${dir}/bench_shot_server.c)
-  target_link_libraries(pool-bench-shot-server PRIVATE pool_lcm_tools pool_bench_util)
 
   install(TARGETS pool-shot-server pool-lcm-subscribe RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   install(PROGRAMS ${CMAKE_CURRENT_SOURCE_DIR}/pool_lcm_subscribe.py DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark of pool-batch: shots per second on 1 thread and on every core, parallel efficiency.
 
-Usage: python3 tools/batch/bench_batch.py [--bin DIR] [--runs R] [--shots N] [--breaks M]
+Usage: python3 bench/batch/bench_batch.py [--bin DIR] [--runs R] [--shots N] [--breaks M]
                                          [--threads T] [--work DIR]
 
 Two scenes, both simulated by pool-batch --random (fixed seed) with the output to /dev/null:

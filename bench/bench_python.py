@@ -2,7 +2,7 @@
 """Time whole shots through the Python binding (python/libpool, ctypes) to show its overhead
 over the C library (compare with pool-bench-shot, which runs the same kind of scenes in C).
 
-    PYTHONPATH=python .venv/bin/python tools/bench_python.py [--runs N] [--seed S]
+    PYTHONPATH=python .venv/bin/python bench/bench_python.py [--runs N] [--seed S]
 
 Per scene it prints the median and minimum wall time per shot of three ways to use a reused Sim:
   run      reset, add the balls, strike, run, read the pocketed ids (the candidate-shot loop)

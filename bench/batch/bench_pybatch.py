@@ -2,10 +2,10 @@
 """Benchmark of libpool.batch.run against pool-batch: shots per second on post-break random shots.
 
 Usage: PYTHONPATH=python LIBPOOL_PATH=build/release/libpool/libpool.so \
-       .venv/bin/python tools/batch/bench_pybatch.py [--bin DIR] [--runs R] [--shots N]
+       .venv/bin/python bench/batch/bench_pybatch.py [--bin DIR] [--runs R] [--shots N]
                                                     [--threads T] [--work DIR] [--ranges SPEC]
 
-The post-break table and the strikes of tools/batch/bench_batch.py (pool-batch --random N --seed 1
+The post-break table and the strikes of bench/batch/bench_batch.py (pool-batch --random N --seed 1
 with its ranges). pool-batch is timed as there (wall time of the whole process, CSV to /dev/null);
 libpool.batch.run on the same strikes (read from pool-batch's rows) is timed from the call to its
 return (layout parse, simulation, the NumPy arrays), on 1 and T workers. Median and best of R

@@ -3,7 +3,7 @@
 // rate at which every request was answered and the server kept up (the last answer came within
 // --slack seconds of the last request). Prints per-run figures, then the median and minimum over
 // runs and the machine. Run it (and the server) inside a private network namespace; see
-// tools/lcm/bench_shot_server.sh.
+// bench/lcm/bench_shot_server.sh.
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>

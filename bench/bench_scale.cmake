@@ -1,5 +1,5 @@
 # pool-bench-scale: libpool's cost per event against the ball count, with the schedule's
-# all-pairs search and the broadphase grid (tools/bench_scale.c, docs/measurements.md). It sets
+# all-pairs search and the broadphase grid (bench/bench_scale.c, docs/measurements.md). It sets
 # the search through an internal function, so libpool comes from the internal archive (listed
 # before libpool.a, it defines every libpool symbol pool_tools asks for: one copy of libpool).
 add_executable(pool-bench-scale ${CMAKE_CURRENT_SOURCE_DIR}/bench_scale.c)

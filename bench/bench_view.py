@@ -2,7 +2,7 @@
 """The pool-view page of a break: its size and its load time in headless Chromium (navigation
 start to the end of the load event, the page drawn at t = 0), median and minimum of the runs.
 
-    .venv/bin/python tools/bench_view.py [--runs N] [--bin-dir build/release/tools]
+    .venv/bin/python bench/bench_view.py [--runs N] [--bin-dir build/release/tools]
 """
 import argparse
 import os

@@ -3,10 +3,10 @@
 pool-batch: shots per second on post-break random shots, and the cluster's overhead per chunk.
 
 Usage: PYTHONPATH=python LIBPOOL_PATH=build/release/libpool/libpool.so \
-       .venv/bin/python tools/batch/bench_dask.py [--bin DIR] [--runs R] [--shots N]
+       .venv/bin/python bench/batch/bench_dask.py [--bin DIR] [--runs R] [--shots N]
                                                   [--chunks C1,C2,...] [--work DIR]
 
-The post-break table and strikes of tools/batch/bench_batch.py (pool-batch --random N --seed 1).
+The post-break table and strikes of bench/batch/bench_batch.py (pool-batch --random N --seed 1).
 Timed, alternating so that a change of load hits all alike: pool-batch --threads 2 (the whole
 process, CSV to /dev/null), libpool.batch.run(workers=2) and libpool.dask.run on a LocalCluster
 of 2 worker processes with one thread each (the cluster started once, outside the timing; each

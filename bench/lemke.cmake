@@ -1,6 +1,6 @@
 # pool-bench-lemke: libpool's lexicographic Lemke (an internal function, so it links the internal
 # archive) on random LINK friction LCPs; the generator is the unit test's
-# (tests/unit/lemke_friction_lcp.h). Built, not a test; the executable lands in the build's tools/.
+# (tests/unit/lemke_friction_lcp.h). Built, not a test; the executable lands in the build's bench/.
 add_executable(pool-bench-lemke ${CMAKE_CURRENT_SOURCE_DIR}/bench_lemke.c)
 target_include_directories(pool-bench-lemke PRIVATE ${CMAKE_SOURCE_DIR}/libpool/src ${CMAKE_SOURCE_DIR}/tests/unit)
 target_link_libraries(pool-bench-lemke PRIVATE pool_bench_util pool_internal m)

@@ -4,8 +4,8 @@
 Python loop of Sim.state_at, then runs pool-bench-trajectory (the C loop of pool_sim_state_at
 and one pool_sim_states_at call) for the reference.
 
-    PYTHONPATH=python .venv/bin/python tools/bench_trajectory.py [--times N] [--runs R]
-        [--c-bench build/release/tools/pool-bench-trajectory]
+    PYTHONPATH=python .venv/bin/python bench/bench_trajectory.py [--times N] [--runs R]
+        [--c-bench build/release/bench/pool-bench-trajectory]
 """
 import argparse
 import os
@@ -34,7 +34,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--times", type=int, default=10000)
     p.add_argument("--runs", type=int, default=21)
-    p.add_argument("--c-bench", default=os.path.join(ROOT, "build", "release", "tools",
+    p.add_argument("--c-bench", default=os.path.join(ROOT, "build", "release", "bench",
                                                       "pool-bench-trajectory"))
     args = p.parse_args()
     with libpool.Sim() as sim:

@@ -5,7 +5,7 @@ single environment (gym.make, with Gymnasium's checking wrappers) and the vector
 fastfiz noise. Each
 figure: median and minimum over RUNS runs of STEPS steps; the machine is printed first.
 
-    PYTHONPATH=python .venv/bin/python tools/game/bench_gym.py [--runs 5] [--steps 2000]
+    PYTHONPATH=python .venv/bin/python bench/game/bench_gym.py [--runs 5] [--steps 2000]
 """
 
 import argparse

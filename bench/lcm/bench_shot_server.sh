@@ -1,9 +1,9 @@
 #!/bin/sh
 # Load benchmark of pool-shot-server, inside a private network namespace (multicast stays on its
 # loopback): short shots, then breaks. Prints per-run figures, median and minimum, and the machine.
-# usage: tools/lcm/bench_shot_server.sh [BUILD_DIR] [extra pool-bench-shot-server options]
+# usage: bench/lcm/bench_shot_server.sh [BUILD_DIR] [extra pool-bench-shot-server options]
 # Options for the server (e.g. --workers 2) go in POOL_SHOT_SERVER_ARGS:
-#   POOL_SHOT_SERVER_ARGS='--workers 2' tools/lcm/bench_shot_server.sh build/release --runs 3
+#   POOL_SHOT_SERVER_ARGS='--workers 2' bench/lcm/bench_shot_server.sh build/release --runs 3
 set -eu
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 BUILD="${1:-$ROOT/build/release}"
@@ -38,9 +38,9 @@ done
 echo "server: pool-shot-server ${POOL_SHOT_SERVER_ARGS:-(default options)}"
 # The labels count the events pool-sim produces for each scenario, so they follow the engine.
 events() { "$BUILD/tools/pool-sim" "$1" --summary 2>&1 >/dev/null | sed -n 's/^pool-sim: \([0-9]*\) events.*/\1/p'; }
-"$BUILD/tools/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/short.json" \
+"$BUILD/bench/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/short.json" \
   --name "short shot (1 ball, $(events "$DATA/short.json") events)" "$@"
-"$BUILD/tools/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/break.json" \
+"$BUILD/bench/pool-bench-shot-server" --lcm-url "$URL" --scenario "$DATA/break.json" \
   --name "break (16 balls, $(events "$DATA/break.json") events)" "$@"
 kill -TERM $SERVER
 wait $SERVER || true

@@ -1,5 +1,5 @@
 # pool-bench-quartic: libpool's quartic solver against GSL's gsl_poly_complex_solve.
-# Built only when GSL is found (pkg-config gsl); the executable lands in the build's tools/ dir.
+# Built only when GSL is found (pkg-config gsl); the executable lands in the build's bench/ dir.
 find_package(PkgConfig QUIET)
 if(PkgConfig_FOUND)
   pkg_check_modules(POOL_GSL QUIET IMPORTED_TARGET gsl)
