@@ -1,6 +1,7 @@
 """ctypes mirrors and prototypes of libpool_scenario (scenario/include/pool/scenario.h and
-pool/batch.h): the scenario parser and the batch shot the commands use, so libpool.batch reads a
-layout and shoots exactly as pool-sim and pool-batch do. tests/python checks every size and
+pool/batch.h): the scenario parser, the result writer and the batch shot the commands use, so
+libpool.batch reads a layout and shoots exactly as pool-sim and pool-batch do, and Sim.result is
+the document pool-sim writes. tests/python checks every size and
 offset against a C program compiled from those headers.
 """
 
@@ -11,8 +12,8 @@ from ctypes import POINTER, c_bool, c_char, c_char_p, c_double, c_int, c_int32, 
 from . import _ffi, game
 from ._ffi import BallState, SimDef, Strike
 
-__all__ = ["CBatchStrike", "CScenario", "CBatchShot", "STRUCTS", "MESSAGE_SIZE", "load",
-           "library_path"]
+__all__ = ["CBatchStrike", "CScenario", "CBatchShot", "CResultOptions", "STRUCTS", "MESSAGE_SIZE",
+           "load", "library_path"]
 
 MESSAGE_SIZE = 512        # POOL_SCENARIO_MESSAGE_SIZE
 BATCH_MESSAGE_SIZE = 400  # POOL_BATCH_MESSAGE_SIZE
@@ -39,9 +40,16 @@ class CBatchShot(ctypes.Structure):
                 ("message", c_char * BATCH_MESSAGE_SIZE)]
 
 
+class CResultOptions(ctypes.Structure):
+    """pool_result_options (its C field "def" is sim_def here)."""
+    _fields_ = [("sample_dt", c_double), ("pretty", c_bool), ("sim_def", POINTER(SimDef)),
+                ("game", POINTER(game.CState))]
+
+
 # C name -> (mirror, {C field: mirror field} where they differ); the layout test walks this.
 STRUCTS = {"pool_batch_strike": (CBatchStrike, {}), "pool_scenario": (CScenario, {"def": "sim_def"}),
-           "pool_batch_shot": (CBatchShot, {})}
+           "pool_batch_shot": (CBatchShot, {}),
+           "pool_result_options": (CResultOptions, {"def": "sim_def"})}
 
 _sim_p = c_void_p
 _PROTOTYPES = {
@@ -49,6 +57,9 @@ _PROTOTYPES = {
     "pool_scenario_free": (None, [POINTER(CScenario)]),
     "pool_batch_run": (c_int, [POINTER(CScenario), POINTER(CBatchStrike), c_int, POINTER(_sim_p),
                                POINTER(CBatchShot), POINTER(BallState)]),
+    # The text is freed by pool_scenario_text_free: a c_void_p, not a c_char_p ctypes would copy.
+    "pool_result_json": (c_void_p, [_sim_p, POINTER(CResultOptions)]),
+    "pool_scenario_text_free": (None, [c_void_p]),
 }
 
 

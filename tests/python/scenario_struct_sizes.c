@@ -29,6 +29,9 @@ int main(void) {
 	FIELD(pool_batch_shot, events, 0); FIELD(pool_batch_shot, end_time, 0); FIELD(pool_batch_shot, hit, 0);
 	FIELD(pool_batch_shot, first_hit, 0); FIELD(pool_batch_shot, judged, 0); FIELD(pool_batch_shot, game, 0);
 	FIELD(pool_batch_shot, message, 1);
+	begin("pool_result_options", sizeof(pool_result_options));
+	FIELD(pool_result_options, sample_dt, 0); FIELD(pool_result_options, pretty, 0);
+	FIELD(pool_result_options, def, 0); FIELD(pool_result_options, game, 1);
 	printf(", \"constants\": {\"POOL_SCENARIO_MESSAGE_SIZE\": %d, \"POOL_BATCH_MESSAGE_SIZE\": %d, "
 	       "\"POOL_SCENARIO_MAX_ABS\": %.17g}}\n",
 	       POOL_SCENARIO_MESSAGE_SIZE, POOL_BATCH_MESSAGE_SIZE, POOL_SCENARIO_MAX_ABS);
