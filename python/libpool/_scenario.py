@@ -6,7 +6,6 @@ offset against a C program compiled from those headers.
 """
 
 import ctypes
-import threading
 from ctypes import POINTER, c_bool, c_char, c_char_p, c_double, c_int, c_int32, c_size_t, c_void_p
 
 from . import _ffi, game
@@ -63,34 +62,18 @@ _PROTOTYPES = {
 }
 
 
+LIBRARY = _ffi.Companion("libpool_scenario.so", "LIBPOOL_SCENARIO_PATH", "scenario", _PROTOTYPES,
+                         needs=(game.LIBRARY,),
+                         hint=" (which builds it when jansson is installed: libjansson-dev)")
+
+
 def library_path():
     """Where libpool_scenario.so is: bundled next to this file (pip install ./python), else
     $LIBPOOL_SCENARIO_PATH, else beside the libpool.so in use when that is a build tree's, else
     the repository's build/release tree, else the system's library search."""
-    return _ffi.companion_path("libpool_scenario.so", "LIBPOOL_SCENARIO_PATH", "scenario")
-
-
-_lib = None
-_lock = threading.Lock()
+    return LIBRARY.path()
 
 
 def load():
     """The loaded libpool_scenario with its prototypes set (once; safe from several threads)."""
-    global _lib
-    if _lib is not None:
-        return _lib
-    with _lock:
-        if _lib is None:
-            _ffi.load()  # libpool.so and libpool_games.so first: libpool_scenario.so needs them
-            game._load()
-            path = library_path()
-            if path is None:
-                raise OSError("libpool_scenario.so not found: set LIBPOOL_SCENARIO_PATH, build the "
-                              "repository into build/release, or pip install ./python (which "
-                              "builds it when jansson is installed: libjansson-dev)")
-            lib = ctypes.CDLL(path)
-            for name, (restype, argtypes) in _PROTOTYPES.items():
-                fn = getattr(lib, name)
-                fn.restype, fn.argtypes = restype, argtypes
-            _lib = lib
-    return _lib
+    return LIBRARY.load()

@@ -52,39 +52,28 @@ execute_process(COMMAND ${PKG_CONFIG} --modversion libpool OUTPUT_VARIABLE versi
 if(NOT rc EQUAL 0 OR NOT version STREQUAL "${PROJECT_VERSION}")
   message(FATAL_ERROR "pkg-config --modversion libpool: '${version}' (expected ${PROJECT_VERSION})")
 endif()
-execute_process(COMMAND ${PKG_CONFIG} --cflags --libs libpool OUTPUT_VARIABLE flags
-  OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "pkg-config --cflags --libs libpool failed")
-endif()
-separate_arguments(flags UNIX_COMMAND "${flags}")
-execute_process(COMMAND ${CC} -std=c11 ${SOURCE_DIR}/tests/consumer/project/main.c ${flags} -lm
-  -o ${WORK_DIR}/consumer_pc RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "cc with pkg-config's flags (${flags}) failed")
-endif()
-execute_process(COMMAND ${WORK_DIR}/consumer_pc RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "pkg-config: ${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the pkg-config consumer failed: ${rc} ${err}")
-endif()
-
-# The scenario library through its own pkg-config file (libpool_scenario.pc requires libpool.pc).
-if(WITH_SCENARIO)
-  execute_process(COMMAND ${PKG_CONFIG} --cflags --libs libpool_scenario OUTPUT_VARIABLE flags
+# Compiles SOURCE with `cc $(pkg-config --cflags --libs PACKAGE) EXTRA` into NAME and runs it.
+function(pool_consumer_pc package source name)
+  execute_process(COMMAND ${PKG_CONFIG} --cflags --libs ${package} OUTPUT_VARIABLE flags
     OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "pkg-config --cflags --libs libpool_scenario failed")
+    message(FATAL_ERROR "pkg-config --cflags --libs ${package} failed")
   endif()
   separate_arguments(flags UNIX_COMMAND "${flags}")
-  execute_process(COMMAND ${CC} -std=c11 ${SOURCE_DIR}/tests/consumer/project/scenario.c ${flags}
-    -o ${WORK_DIR}/consumer_scenario_pc RESULT_VARIABLE rc)
+  execute_process(COMMAND ${CC} -std=c11 ${SOURCE_DIR}/tests/consumer/project/${source} ${flags} ${ARGN}
+    -o ${WORK_DIR}/${name} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "cc with pkg-config's flags for libpool_scenario (${flags}) failed")
+    message(FATAL_ERROR "cc with pkg-config's flags for ${package} (${flags}) failed")
   endif()
-  execute_process(COMMAND ${WORK_DIR}/consumer_scenario_pc RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${WORK_DIR}/${name} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message(STATUS "pkg-config: ${out}")
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "the pkg-config scenario consumer failed: ${rc} ${err}")
+    message(FATAL_ERROR "the pkg-config consumer ${name} failed: ${rc} ${err}")
   endif()
+endfunction()
+
+pool_consumer_pc(libpool main.c consumer_pc -lm)
+# The scenario library through its own pkg-config file (libpool_scenario.pc requires libpool.pc).
+if(WITH_SCENARIO)
+  pool_consumer_pc(libpool_scenario scenario.c consumer_scenario_pc)
 endif()

@@ -1,19 +1,11 @@
 // Prints sizeof and offsetof of the scenario library's structures that libpool._scenario mirrors,
 // as JSON (the format of struct_sizes.c); test_scenario_binding.py compares it with ctypes.
-#include <stddef.h>
 #include <stdio.h>
 
 #include <pool/batch.h>
 #include <pool/scenario.h>
 
-static int first = 1;
-
-static void begin(const char *name, size_t size) {
-	printf("%s\"%s\": {\"size\": %zu, \"fields\": {", first ? "" : ", ", name, size);
-	first = 0;
-}
-
-#define FIELD(type, field, last) printf("\"%s\": %zu%s", #field, offsetof(type, field), (last) ? "}}" : ", ")
+#include "struct_json.h"
 
 int main(void) {
 	printf("{");
