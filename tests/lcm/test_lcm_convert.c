@@ -15,7 +15,7 @@
 #include <lcm/lcm.h>
 
 #include "lcm_convert.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 typedef struct fixture {
 	pool_scenario scenario;
