@@ -1,9 +1,9 @@
 # pool-fit (tools/pool_fit.c, tools/fit/): strike and table parameters from observed tracks by
 # nonlinear least squares (GSL's gsl_multifit_nlinear). Only the tools link GSL; libpool does not.
 # pool_fit_core is the fit without the command line, for the tests' synthetic trials. Deferred to
-# the end of tools/CMakeLists.txt because pool_scenario is defined by sim.cmake.
+# the end of tools/CMakeLists.txt because pool_tools is defined by sim.cmake.
 function(pool_fit_setup)
-  if(NOT TARGET pool_scenario)
+  if(NOT TARGET pool_tools)
     return()
   endif()
   find_package(PkgConfig REQUIRED)
@@ -16,7 +16,7 @@ function(pool_fit_setup)
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/fit/*.c)
   add_library(pool_fit_core STATIC ${sources})
   target_include_directories(pool_fit_core PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
-  target_link_libraries(pool_fit_core PUBLIC pool_scenario PkgConfig::GSL Threads::Threads m)
+  target_link_libraries(pool_fit_core PUBLIC pool_tools PkgConfig::GSL Threads::Threads m)
   add_executable(pool-fit ${CMAKE_CURRENT_SOURCE_DIR}/pool_fit.c)
   target_link_libraries(pool-fit PRIVATE pool_fit_core)
   # pool-tracks: a camera's tracks of a simulated shot (with noise), pool-fit's input from known values.
@@ -25,9 +25,6 @@ function(pool_fit_setup)
   # pool-fit-trials: seeded synthetic trials, the coverage of pool-fit's intervals (tests, measurements).
   add_executable(pool-fit-trials ${CMAKE_CURRENT_SOURCE_DIR}/fit_trials.c)
   target_link_libraries(pool-fit-trials PRIVATE pool_fit_core)
-  # pool-bench-fit: seconds for one shot and 20 shots together (docs/measurements.md).
-  add_executable(pool-bench-fit ${CMAKE_CURRENT_SOURCE_DIR}/bench_fit.c)
-  target_link_libraries(pool-bench-fit PRIVATE pool_fit_core pool_bench_util)
   install(TARGETS pool-fit pool-tracks RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 cmake_language(DEFER CALL pool_fit_setup)

@@ -14,13 +14,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "batch_shot.h"
+#include "pool/batch.h"
 #include "cli.h"
 #include "game/peer.h"
 #include "game_json.h"
 #include "json_writer.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "text_escape.h"
 
 #define PROGRAM "pool-game"
@@ -544,8 +544,8 @@ static int play_shot(game *g, game_peer *peer, bool *over) {
 	                                             : nominal;
 	if (!(simulated.theta >= 0.0 && simulated.theta < 90.0))
 		return shot_error(shot, "strike.theta: must be in [0, 90) degrees");
-	const pool_strike strike = {.speed = simulated.speed, .phi = simulated.phi * POOL_BATCH_DEG,
-	                            .theta = simulated.theta * POOL_BATCH_DEG, .a = simulated.a, .b = simulated.b};
+	const pool_strike strike = {.speed = simulated.speed, .phi = simulated.phi * POOL_DEGREE,
+	                            .theta = simulated.theta * POOL_DEGREE, .a = simulated.a, .b = simulated.b};
 	pool_error e;
 	pool_result r = pool_sim_strike(g->sim, simulated.ball, &strike, &e);
 	if (r != POOL_OK) {
@@ -629,9 +629,9 @@ static int play(game *g) {
 		pool_jw_key(&g->record, "speed");
 		pool_jw_number(&g->record, g->noise.speed);
 		pool_jw_key(&g->record, "phi");
-		pool_jw_number(&g->record, g->noise.phi / POOL_BATCH_DEG);
+		pool_jw_number(&g->record, g->noise.phi / POOL_DEGREE);
 		pool_jw_key(&g->record, "theta");
-		pool_jw_number(&g->record, g->noise.theta / POOL_BATCH_DEG);
+		pool_jw_number(&g->record, g->noise.theta / POOL_DEGREE);
 		pool_jw_key(&g->record, "a");
 		pool_jw_number(&g->record, g->noise.a);
 		pool_jw_key(&g->record, "b");

@@ -8,7 +8,7 @@
 
 #include "cli.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "view_page.h"
 #ifdef POOL_HAVE_LCM
 #include "sim_publish.h"

@@ -13,7 +13,7 @@
 #include "cli.h"
 #include "fit/fit.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "text_buffer.h"
 
 #define PROGRAM "pool-tracks"

@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 #include "pool/aim.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 /// A position to plan: a scenario's balls, table and models, its "game" (without needing a
 /// strike: the strike, if any, only names the cue ball), and the cue ball.

@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 #include "pool/pool.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #define FIT_PROGRAM "pool-fit"
 

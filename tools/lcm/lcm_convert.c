@@ -2,7 +2,8 @@
 #include "lcm_convert.h"
 
 #include "game_json.h"
-#include "scenario.h"
+#include "pool/scenario.h"
+#include "result_setup.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -55,7 +55,7 @@
 #include "cli.h"
 #include "lcm_convert.h"
 #include "lcm_service.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #define EXIT_BAD_INPUT 2
 #define EXIT_INTERNAL 1

@@ -11,7 +11,7 @@
 #include <time.h>
 
 #include "pool_engine_plugin.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 // The LINK statistics (issue 11) arrive with pool/link.h; a libpool without it has no clusters,
 // and the plugin then leaves the optional export out (its records say null).
 #if __has_include("pool/link.h")
