@@ -20,22 +20,6 @@ typedef struct piece {
 	double x_lo, x_hi, y_lo, y_hi; // m
 } piece;
 
-// The range of a quadratic x0 + v t + a t^2 / 2 over t in [t_lo, t_hi]: its ends and, when it
-// turns inside, its vertex (the same expression as pool_segment_path, so the same rounding).
-static void reach_1d(double x0, double v, double a, double t_lo, double t_hi, double *lo, double *hi) {
-	const double e0 = x0 + t_lo * v + 0.5 * t_lo * t_lo * a, e1 = x0 + t_hi * v + 0.5 * t_hi * t_hi * a;
-	*lo = e0 < e1 ? e0 : e1;
-	*hi = e0 < e1 ? e1 : e0;
-	if (a != 0.0) {
-		const double t = -v / a;
-		if (t > t_lo && t < t_hi) {
-			const double e = x0 + t * v + 0.5 * t * t * a;
-			*lo = e < *lo ? e : *lo;
-			*hi = e > *hi ? e : *hi;
-		}
-	}
-}
-
 // Cuts the segment's path over [from, to] (absolute) into pieces at most a cell long (at most
 // POOL_BROADPHASE_MAX_PIECES); returns their count. A ball that does not translate is one piece.
 static int cut(const pool_broadphase *bp, const pool_segment *seg, double from, double to, piece *out) {
@@ -61,8 +45,8 @@ static int cut(const pool_broadphase *bp, const pool_segment *seg, double from, 
 			q->y_lo = q->y_hi = s->pos.y;
 			continue;
 		}
-		reach_1d(s->pos.x, s->vel.x, seg->acc.x, q->from - seg->t0, q->to - seg->t0, &q->x_lo, &q->x_hi);
-		reach_1d(s->pos.y, s->vel.y, seg->acc.y, q->from - seg->t0, q->to - seg->t0, &q->y_lo, &q->y_hi);
+		pool_segment_range_1d(s->pos.x, s->vel.x, seg->acc.x, q->from - seg->t0, q->to - seg->t0, &q->x_lo, &q->x_hi);
+		pool_segment_range_1d(s->pos.y, s->vel.y, seg->acc.y, q->from - seg->t0, q->to - seg->t0, &q->y_lo, &q->y_hi);
 	}
 	return k;
 }

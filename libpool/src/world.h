@@ -32,6 +32,10 @@ typedef struct pool_body {
 	pool_pocket own_pocket;   ///< for a pocket event; for a cushion event, the pocket of its facing or jaw
 	int own_part;             ///< for a cushion event with pockets "jaws": the part of the nose curve
 	int partner;              ///< other body of the pending event in the queue slot, or -1
+	/// m, box in the plane (x_lo, x_hi, y_lo, y_hi) the centre stays in from the segment's start
+	/// to its own next event (or max_time), widened by R + POOL_BROADPHASE_MARGIN: two balls whose
+	/// boxes do not overlap cannot meet before either's own event (schedule.c)
+	double reach[4];
 	int changed;              ///< scratch of pool_schedule_after_event: among the changed bodies
 } pool_body;
 
