@@ -38,6 +38,10 @@ static void check_bodies(const pool_sim *sim) {
 		POOL_ASSERT_MSG(memcmp(&sim->cur[i], &b->seg.start, sizeof sim->cur[i]) == 0, detail);
 		POOL_ASSERT_MSG(b->active == (sim->cur[i].motion != POOL_MOTION_POCKETED && sim->cur[i].motion != POOL_MOTION_OFF_TABLE),
 		                detail);
+		// What the pair loop reads first mirrors the body (schedule.c).
+		POOL_ASSERT_MSG(sim->reach[i].flags == ((b->active ? POOL_REACH_IN_PLAY : 0) |
+		                                        (b->seg.model->translating ? POOL_REACH_MOVING : 0)),
+		                detail);
 		POOL_ASSERT_MSG(b->partner >= -1 && b->partner < sim->n && b->partner != i, detail);
 		POOL_ASSERT_MSG(b->partner < 0 || (b->active && sim->body[b->partner].active), detail);
 		POOL_ASSERT_MSG(!(b->seg.t0 > sim->time) || sim->time == 0.0, detail);

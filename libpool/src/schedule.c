@@ -135,17 +135,20 @@ static void begin_own(pool_sim *sim, int i, const pool_ball_state *s, double t) 
 	b->own_kind = kind;
 }
 
-// Body b's reach box (pool_body.reach) over its segment up to its own next event or max_time.
-// Every contact search of b asks about a window inside that stretch (it ends at the earlier of
-// the two bodies' own events and at max_time), so a pair whose boxes are apart is one the pair
-// loop's narrow phase would reject: the box test leaves the events the same to the bit. The
-// margin covers the touching band and the rounding of the paths, as the broadphase's pieces.
-static void reach_box(const pool_sim *sim, pool_body *b) {
+// Body i's reach (pool_reach): its flags, and its box over its segment up to its own next event
+// or max_time. Every contact search of it asks about a window inside that stretch (it ends at the
+// earlier of the two bodies' own events and at max_time), so a pair whose boxes are apart is one
+// the pair loop's narrow phase would reject: the box test leaves the events the same to the bit.
+// The margin covers the touching band and the rounding of the paths, as the broadphase's pieces.
+static void reach_box(pool_sim *sim, int i) {
+	const pool_body *b = &sim->body[i];
 	const pool_segment *seg = &b->seg;
 	const pool_ball_state *s = &seg->start;
+	pool_reach *r = &sim->reach[i];
+	r->flags = (b->active ? POOL_REACH_IN_PLAY : 0) | (seg->model->translating ? POOL_REACH_MOVING : 0);
 	const double widen = sim->def.params.ball_radius + POOL_BROADPHASE_MARGIN;
 	const double span = fmin(fmin(b->own_time, sim->def.max_time) - seg->t0, seg->move_end);
-	double *box = b->reach;
+	double *box = r->box;
 	if (!seg->model->translating || !(span > 0.0)) {
 		box[0] = box[1] = s->pos.x;
 		box[2] = box[3] = s->pos.y;
@@ -170,7 +173,7 @@ static inline int reach_apart(const double *a, const double *b) {
 
 void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
 	begin_own(sim, i, s, t);
-	reach_box(sim, &sim->body[i]);
+	reach_box(sim, i);
 	// The broadphase files the segment's reach up to its own next event: no pair search looks
 	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
 	// Before the shot's first prediction (balls being added) there is nothing to file it in yet.
@@ -207,12 +210,16 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, i
 	const int mi = bi->seg.model->translating;
 	const double horizon_i = fmin(bi->own_time, sim->def.max_time);
 	const int cluster_i = pool_link_cluster_of(&sim->link, i);
+	// A body in play; when body i does not move, one that does.
+	const int need = mi ? POOL_REACH_IN_PLAY : POOL_REACH_IN_PLAY | POOL_REACH_MOVING;
+	const double *box_i = sim->reach[i].box;
 	if (grid)
 		pool_broadphase_query(&sim->broad, i, &bi->seg, now, horizon_i);
 	for (int j = next_body(sim, grid, -1); j >= 0; j = next_body(sim, grid, j)) {
-		const pool_body *bj = &sim->body[j];
-		if (j == i || !bj->active || (!mi && !bj->seg.model->translating) || (boxes && reach_apart(bi->reach, bj->reach)))
+		const pool_reach *rj = &sim->reach[j];
+		if (j == i || (rj->flags & need) != need || (boxes && reach_apart(box_i, rj->box)))
 			continue;
+		const pool_body *bj = &sim->body[j];
 		// Contacts inside a cluster are its LCP's (link.c), not events.
 		if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
 			continue;
@@ -280,7 +287,7 @@ void pool_schedule_predict_all(pool_sim *sim) {
 	for (int i = 0; i < sim->n; ++i) {
 		sim->keys[i] = (pool_event_key){INFINITY, 0, sim->cur[i].id, sim->cur[i].id, i};
 		sim->body[i].partner = -1;
-		reach_box(sim, &sim->body[i]); // max_time as this run has it
+		reach_box(sim, i); // max_time as this run has it
 	}
 	pool_event_queue_build(&sim->queue, sim->n);
 	if (pool_broadphase_begin(&sim->broad, &sim->alloc, &sim->def.table, sim->def.params.ball_radius, sim->n))
