@@ -131,8 +131,15 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
                           int n) {
 	bp->on = bp->watching = 0;
 	bp->n = n;
+	if (n <= 0 || reserve_balls(bp, a, n))
+		return 0;
+	// The partner lists, whatever the search: after an event they name the balls to predict
+	// again, where a scan of every ball would read every ball's record.
+	for (int i = 0; i < n; ++i)
+		bp->own[i] = bp->watch_first[i] = bp->watch_next[i] = bp->watch_prev[i] = -1;
+	bp->watching = 1;
 	const int use = bp->mode == POOL_BROADPHASE_GRID || (bp->mode == POOL_BROADPHASE_AUTO && n >= POOL_BROADPHASE_MIN_BALLS);
-	if (!use || n <= 0 || reserve_balls(bp, a, n))
+	if (!use)
 		return 0;
 	// The grid: the table and a cell around it; balls beyond (in flight, off the table) are
 	// filed in the border cells.
@@ -158,11 +165,9 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 		bp->head[c] = -1;
 	bp->used_entries = 0;
 	bp->free_entry = -1;
-	for (int i = 0; i < n; ++i)
-		bp->own[i] = bp->watch_first[i] = bp->watch_next[i] = bp->watch_prev[i] = -1;
 	bp->near_lo = 0;
 	bp->near_hi = -1;
-	bp->on = bp->watching = 1;
+	bp->on = 1;
 	return 1;
 }
 

@@ -3,20 +3,6 @@
 
 #include "assert.h"
 
-int pool_event_key_cmp(const pool_event_key *a, const pool_event_key *b) {
-	if (a->time != b->time)
-		return a->time < b->time ? -1 : 1;
-	if (a->kind != b->kind)
-		return a->kind < b->kind ? -1 : 1;
-	if (a->order_lo != b->order_lo)
-		return a->order_lo < b->order_lo ? -1 : 1;
-	if (a->order_hi != b->order_hi)
-		return a->order_hi < b->order_hi ? -1 : 1;
-	if (a->slot != b->slot)
-		return a->slot < b->slot ? -1 : 1;
-	return 0;
-}
-
 static int less(const pool_event_queue *q, int i, int j) {
 	return pool_event_key_cmp(&q->keys[q->heap[i]], &q->keys[q->heap[j]]) < 0;
 }

@@ -208,7 +208,7 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, i
 	pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
 	const pool_vec3 ai = bi->seg.acc;
 	const int mi = bi->seg.model->translating;
-	const double horizon_i = fmin(bi->own_time, sim->def.max_time);
+	const double horizon_i = earlier(sim->def.max_time, bi->own_time); // as fmin, were own_time NaN
 	const int cluster_i = pool_link_cluster_of(&sim->link, i);
 	// A body in play; when body i does not move, one that does.
 	const int need = mi ? POOL_REACH_IN_PLAY : POOL_REACH_IN_PLAY | POOL_REACH_MOVING;
@@ -238,7 +238,7 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, i
 		}
 		if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
 			continue;
-		const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
+		const double tau = pool_predict_ball_ball_in_reach(dp, dv, da, p->ball_radius, T);
 		if (!(tau <= T))
 			continue;
 		const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
