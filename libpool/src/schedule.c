@@ -147,15 +147,19 @@ static void reach_box(pool_sim *sim, int i) {
 	pool_reach *r = &sim->reach[i];
 	r->flags = (b->active ? POOL_REACH_IN_PLAY : 0) | (seg->model->translating ? POOL_REACH_MOVING : 0);
 	const double widen = sim->def.params.ball_radius + POOL_BROADPHASE_MARGIN;
-	const double span = fmin(fmin(b->own_time, sim->def.max_time) - seg->t0, seg->move_end);
+	// The window's end as the pair loop takes it (max_time were own_time NaN), and the path's.
+	const double end = b->own_time < sim->def.max_time ? b->own_time : sim->def.max_time;
+	double span = end - seg->t0;
+	span = seg->move_end < span ? seg->move_end : span;
 	double *box = r->box;
+	if (seg->model->translating && !(span < INFINITY)) {
+		box[0] = box[2] = -INFINITY; // an endless window (or a NaN): every pair
+		box[1] = box[3] = INFINITY;
+		return;
+	}
 	if (!seg->model->translating || !(span > 0.0)) {
 		box[0] = box[1] = s->pos.x;
 		box[2] = box[3] = s->pos.y;
-	} else if (!(span < INFINITY)) {
-		box[0] = box[2] = -INFINITY; // an endless window: every pair
-		box[1] = box[3] = INFINITY;
-		return;
 	} else {
 		pool_segment_range_1d(s->pos.x, s->vel.x, seg->acc.x, 0.0, span, &box[0], &box[1]);
 		pool_segment_range_1d(s->pos.y, s->vel.y, seg->acc.y, 0.0, span, &box[2], &box[3]);

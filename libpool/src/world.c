@@ -295,13 +295,22 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
 	// Above the cloth a ball inside its contact lines can still be inside a cushion's nose (on the
 	// cloth the lines are exactly where it touches one).
-	pool_rail nose_rail;
-	const double nose_gap = pool_table_nose_gap(&sim->def.table, ball->pos, R, &nose_rail);
-	if (ball->pos.z > R + tol && !(nose_gap >= -tol))
-		return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
-		                      pool_rail_name(nose_rail), -nose_gap);
+	if (ball->pos.z > R + tol) {
+		pool_rail nose_rail;
+		const double nose_gap = pool_table_nose_gap(&sim->def.table, ball->pos, R, &nose_rail);
+		if (!(nose_gap >= -tol))
+			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
+			                      pool_rail_name(nose_rail), -nose_gap);
+	}
+	// Most balls are at least 2R apart, which their squared distance tells without a square root
+	// (sqrt is monotone, and 2R is far above 2R - tol): the same answer for every pair.
+	const double apart2 = 4.0 * R * R;
 	for (int j = 0; j < sim->n; ++j) {
-		double d = pool_v3_len(pool_v3_sub(ball->pos, sim->cur[j].pos));
+		const pool_vec3 dp = pool_v3_sub(ball->pos, sim->cur[j].pos);
+		const double dd = pool_v3_dot(dp, dp);
+		if (dd >= apart2)
+			continue;
+		const double d = sqrt(dd);
 		if (d < 2.0 * R - tol)
 			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
 			                      (int)sim->cur[j].id, 2.0 * R - d);
