@@ -375,15 +375,16 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 // below POOL_APPROACH_EPS dropped on the cloth): no impulse acted.
 static int no_impulse(const pool_sim *sim, const int *inv, const pool_ball_state *s, const pool_ball_state *before,
                       int count) {
-	if (memcmp(s, before, sizeof s[0] * (size_t)count) == 0)
-		return 1;
 	// (The common case, an impulse, changes a velocity by more than the clean-up of deriving a
-	// state does: vertical speeds below POOL_APPROACH_EPS, components below POOL_REST_EPS.)
+	// state does: vertical speeds below POOL_APPROACH_EPS, components below POOL_REST_EPS. It is
+	// told first, before comparing the states whole.)
 	const double R = sim->def.params.ball_radius;
 	for (int k = 0; k < count; ++k)
 		if (fabs(s[k].vel.x - before[k].vel.x) > POOL_APPROACH_EPS || fabs(s[k].vel.y - before[k].vel.y) > POOL_APPROACH_EPS ||
 		    R * pool_v3_len(pool_v3_sub(s[k].omega, before[k].omega)) > POOL_APPROACH_EPS)
 			return 0;
+	if (memcmp(s, before, sizeof s[0] * (size_t)count) == 0)
+		return 1;
 	pool_ball_state tidy[2];
 	for (int k = 0; k < count; ++k) {
 		tidy[k] = before[k];
