@@ -91,17 +91,18 @@ static int parse_list(const char *text, int *out, int max) {
 
 int main(int argc, char **argv) {
 	int sizes[16] = {16, 64, 256, 1024, 4096}, n_sizes = 5, runs = 5;
-	const char *family = "gas", *modes = "both";
+	const char *family = "gas", *modes = "both", *models = "default";
 	double window = 2.0;
 	for (int i = 1; i < argc; ++i) {
 		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
 		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
 			printf("usage: pool-bench-scale [--balls 16,64,256,1024,4096] [--family gas|break] [--runs N]\n"
-			       "                        [--time S] [--mode both|all-pairs|grid]\n"
+			       "                        [--time S] [--mode both|all-pairs|grid] [--models default|thesis]\n"
 			       "Times whole shots of the scale scenes (tools/common/scale_scene.h) with the schedule's\n"
 			       "all-pairs search and with the broadphase grid, alternately, and checks that both give the\n"
 			       "same events bit for bit. Prints median and minimum time per shot and per event, events\n"
-			       "per shot, and the machine. Defaults: gas, 5 runs of each search, 2 s of simulated time.\n");
+			       "per shot, and the machine. Defaults: gas, 5 runs of each search, 2 s of simulated time,\n"
+			       "the library's default models (thesis: the 2012 work's, as pool-compare --scale runs).\n");
 			return 0;
 		}
 		if (!v) {
@@ -134,6 +135,13 @@ int main(int argc, char **argv) {
 				fprintf(stderr, "pool-bench-scale: --mode: both, all-pairs or grid\n");
 				return 2;
 			}
+		} else if (!strcmp(a, "--models")) {
+			models = v;
+			pool_models m;
+			if (pool_models_preset(v, &m) != POOL_OK) {
+				fprintf(stderr, "pool-bench-scale: --models: unknown model set '%s' (default, thesis)\n", v);
+				return 2;
+			}
 		} else {
 			fprintf(stderr, "pool-bench-scale: unknown argument '%s' (see --help)\n", a);
 			return 2;
@@ -141,8 +149,8 @@ int main(int argc, char **argv) {
 		++i;
 	}
 	char model[256];
-	printf("machine: %s, %ld cores online; family %s, %g s simulated, %d runs per search\n",
-	       pool_bench_cpu_model(model, sizeof model), pool_bench_cpus_online(), family, window, runs);
+	printf("machine: %s, %ld cores online; family %s, models %s, %g s simulated, %d runs per search\n",
+	       pool_bench_cpu_model(model, sizeof model), pool_bench_cpus_online(), family, models, window, runs);
 	const pool_broadphase_mode list[2] = {POOL_BROADPHASE_ALL_PAIRS, POOL_BROADPHASE_GRID};
 	const int first = !strcmp(modes, "grid"), last = !strcmp(modes, "all-pairs") ? 0 : 1;
 	pool_sim *sim = NULL;
@@ -151,6 +159,7 @@ int main(int argc, char **argv) {
 		scene s;
 		s.n = sizes[k];
 		s.def = pool_default_sim_def();
+		pool_models_preset(models, &s.def.models);
 		s.def.max_time = window;
 		s.balls = malloc(sizeof *s.balls * (size_t)s.n);
 		char err[256];

@@ -57,6 +57,9 @@ bool scale_scenario_json(const std::string &family, int balls, std::string *json
 	                    json_pack("{sf sf sf sf sf}", "length", table.length, "width", table.width, "cushion_height",
 	                              table.cushion_height, "corner_mouth", table.corner_mouth, "side_mouth",
 	                              table.side_mouth));
+	// The laws ODE and Bullet implement, as every scenario of the comparison (comparison.md
+	// "Scenarios and models"): with the defaults the engines would run other laws than libpool.
+	json_object_set_new(root, "models", json_string("thesis"));
 	json_t *list = json_array();
 	for (const pool_ball_state &s : states) {
 		json_t *b = json_object();

@@ -20,22 +20,6 @@ typedef struct piece {
 	double x_lo, x_hi, y_lo, y_hi; // m
 } piece;
 
-// The range of a quadratic x0 + v t + a t^2 / 2 over t in [t_lo, t_hi]: its ends and, when it
-// turns inside, its vertex (the same expression as pool_segment_path, so the same rounding).
-static void reach_1d(double x0, double v, double a, double t_lo, double t_hi, double *lo, double *hi) {
-	const double e0 = x0 + t_lo * v + 0.5 * t_lo * t_lo * a, e1 = x0 + t_hi * v + 0.5 * t_hi * t_hi * a;
-	*lo = e0 < e1 ? e0 : e1;
-	*hi = e0 < e1 ? e1 : e0;
-	if (a != 0.0) {
-		const double t = -v / a;
-		if (t > t_lo && t < t_hi) {
-			const double e = x0 + t * v + 0.5 * t * t * a;
-			*lo = e < *lo ? e : *lo;
-			*hi = e > *hi ? e : *hi;
-		}
-	}
-}
-
 // Cuts the segment's path over [from, to] (absolute) into pieces at most a cell long (at most
 // POOL_BROADPHASE_MAX_PIECES); returns their count. A ball that does not translate is one piece.
 static int cut(const pool_broadphase *bp, const pool_segment *seg, double from, double to, piece *out) {
@@ -61,8 +45,8 @@ static int cut(const pool_broadphase *bp, const pool_segment *seg, double from, 
 			q->y_lo = q->y_hi = s->pos.y;
 			continue;
 		}
-		reach_1d(s->pos.x, s->vel.x, seg->acc.x, q->from - seg->t0, q->to - seg->t0, &q->x_lo, &q->x_hi);
-		reach_1d(s->pos.y, s->vel.y, seg->acc.y, q->from - seg->t0, q->to - seg->t0, &q->y_lo, &q->y_hi);
+		pool_segment_range_1d(s->pos.x, s->vel.x, seg->acc.x, q->from - seg->t0, q->to - seg->t0, &q->x_lo, &q->x_hi);
+		pool_segment_range_1d(s->pos.y, s->vel.y, seg->acc.y, q->from - seg->t0, q->to - seg->t0, &q->y_lo, &q->y_hi);
 	}
 	return k;
 }
@@ -147,8 +131,15 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
                           int n) {
 	bp->on = bp->watching = 0;
 	bp->n = n;
+	if (n <= 0 || reserve_balls(bp, a, n))
+		return 0;
+	// The partner lists, whatever the search: after an event they name the balls to predict
+	// again, where a scan of every ball would read every ball's record.
+	for (int i = 0; i < n; ++i)
+		bp->own[i] = bp->watch_first[i] = bp->watch_next[i] = bp->watch_prev[i] = -1;
+	bp->watching = 1;
 	const int use = bp->mode == POOL_BROADPHASE_GRID || (bp->mode == POOL_BROADPHASE_AUTO && n >= POOL_BROADPHASE_MIN_BALLS);
-	if (!use || n <= 0 || reserve_balls(bp, a, n))
+	if (!use)
 		return 0;
 	// The grid: the table and a cell around it; balls beyond (in flight, off the table) are
 	// filed in the border cells.
@@ -174,11 +165,9 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 		bp->head[c] = -1;
 	bp->used_entries = 0;
 	bp->free_entry = -1;
-	for (int i = 0; i < n; ++i)
-		bp->own[i] = bp->watch_first[i] = bp->watch_next[i] = bp->watch_prev[i] = -1;
 	bp->near_lo = 0;
 	bp->near_hi = -1;
-	bp->on = bp->watching = 1;
+	bp->on = 1;
 	return 1;
 }
 

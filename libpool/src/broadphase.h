@@ -13,8 +13,9 @@
 // The grid costs more than it saves on a small table: it is used from POOL_BROADPHASE_MIN_BALLS
 // balls (measured), and whenever memory for it runs out the schedule goes back to all pairs.
 //
-// The broadphase also keeps, for each ball, the balls whose pending contact is with it, so that
-// after an event the schedule finds the balls to predict again without scanning every ball.
+// The broadphase also keeps, for each ball, the balls whose pending contact is with it (with the
+// grid or without), so that after an event the schedule finds the balls to predict again without
+// scanning every ball.
 #ifndef POOL_BROADPHASE_H
 #define POOL_BROADPHASE_H
 
@@ -85,9 +86,9 @@ typedef struct pool_broadphase {
 /// Sets the pair search of the next shots (from the next pool_broadphase_begin).
 void pool_broadphase_set_mode(pool_broadphase *bp, pool_broadphase_mode mode);
 
-/// Starts a shot of n balls of the given radius on `table`: turns the grid on (empty) and the
-/// partner lists on (empty) when the mode and ball count ask for them and memory allows. Returns
-/// whether the grid is on.
+/// Starts a shot of n balls of the given radius on `table`: turns the partner lists on (empty)
+/// when memory allows, and the grid (empty) when the mode and ball count also ask for it.
+/// Returns whether the grid is on.
 int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const pool_table_def *table, double radius,
                           int n);
 

@@ -38,7 +38,8 @@ typedef struct pool_contact_gap {
 	double f[5];  ///< f(tau) = f[0] + f[1] tau + ... + f[4] tau^4: > 0 apart, 0 touching
 	double gap;   ///< m, distance between the surfaces now (< 0: interpenetrating)
 	double speed; ///< m/s, normal approach speed now (> 0: approaching)
-	double accel; ///< m/s^2, normal approach acceleration now (> 0: pressed together)
+	double accel; ///< m/s^2, normal approach acceleration now (> 0: pressed together); read only
+	              ///< when |speed| <= POOL_APPROACH_EPS
 } pool_contact_gap;
 
 /// Earliest tau in [0, T] at which the bodies meet while approaching (rules above); INFINITY

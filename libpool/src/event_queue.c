@@ -3,54 +3,43 @@
 
 #include "assert.h"
 
-int pool_event_key_cmp(const pool_event_key *a, const pool_event_key *b) {
-	if (a->time != b->time)
-		return a->time < b->time ? -1 : 1;
-	if (a->kind != b->kind)
-		return a->kind < b->kind ? -1 : 1;
-	if (a->order_lo != b->order_lo)
-		return a->order_lo < b->order_lo ? -1 : 1;
-	if (a->order_hi != b->order_hi)
-		return a->order_hi < b->order_hi ? -1 : 1;
-	if (a->slot != b->slot)
-		return a->slot < b->slot ? -1 : 1;
-	return 0;
-}
-
-static int less(const pool_event_queue *q, int i, int j) {
-	return pool_event_key_cmp(&q->keys[q->heap[i]], &q->keys[q->heap[j]]) < 0;
-}
-
-static void swap(pool_event_queue *q, int i, int j) {
-	int a = q->heap[i], b = q->heap[j];
-	q->heap[i] = b;
-	q->heap[j] = a;
-	q->pos[b] = i;
-	q->pos[a] = j;
-}
-
+// Both sifts carry the moving slot along and shift the others into the hole it leaves, one
+// write per level instead of a swap; keys are distinct (their slots differ), so the top is the
+// same whatever path the sift takes.
 static void sift_up(pool_event_queue *q, int i) {
+	const int slot = q->heap[i];
+	const pool_event_key *key = &q->keys[slot];
 	while (i > 0) {
-		int parent = (i - 1) / 2;
-		if (!less(q, i, parent))
+		const int parent = (i - 1) / 2, above = q->heap[parent];
+		if (pool_event_key_cmp(key, &q->keys[above]) >= 0)
 			break;
-		swap(q, i, parent);
+		q->heap[i] = above;
+		q->pos[above] = i;
 		i = parent;
 	}
+	q->heap[i] = slot;
+	q->pos[slot] = i;
 }
 
 static void sift_down(pool_event_queue *q, int i) {
+	const int slot = q->heap[i];
+	const pool_event_key *key = &q->keys[slot];
 	for (;;) {
-		int l = 2 * i + 1, r = l + 1, m = i;
-		if (l < q->count && less(q, l, m))
-			m = l;
-		if (r < q->count && less(q, r, m))
-			m = r;
-		if (m == i)
+		const int l = 2 * i + 1, r = l + 1;
+		if (l >= q->count)
 			break;
-		swap(q, i, m);
-		i = m;
+		int child = l;
+		if (r < q->count && pool_event_key_cmp(&q->keys[q->heap[r]], &q->keys[q->heap[l]]) < 0)
+			child = r;
+		const int below = q->heap[child];
+		if (pool_event_key_cmp(&q->keys[below], key) >= 0)
+			break;
+		q->heap[i] = below;
+		q->pos[below] = i;
+		i = child;
 	}
+	q->heap[i] = slot;
+	q->pos[slot] = i;
 }
 
 void pool_event_queue_build(pool_event_queue *q, int count) {
@@ -65,8 +54,10 @@ void pool_event_queue_build(pool_event_queue *q, int count) {
 
 void pool_event_queue_update(pool_event_queue *q, int slot, const pool_event_key *key) {
 	POOL_ASSERT(slot >= 0 && slot < q->count && key->slot == slot);
+	const int earlier = pool_event_key_cmp(key, &q->keys[slot]) < 0;
 	q->keys[slot] = *key;
-	int i = q->pos[slot];
-	sift_up(q, i);
-	sift_down(q, q->pos[slot]);
+	if (earlier)
+		sift_up(q, q->pos[slot]);
+	else
+		sift_down(q, q->pos[slot]);
 }

@@ -16,8 +16,21 @@ typedef struct pool_event_key {
 	int slot;         ///< owning slot (body index), last resort so the order is total
 } pool_event_key;
 
-/// -1, 0, 1 as a orders before, equal to, after b.
-int pool_event_key_cmp(const pool_event_key *a, const pool_event_key *b);
+/// -1, 0, 1 as a orders before, equal to, after b. Inline: the heap and the pair loop compare keys
+/// at every step.
+static inline int pool_event_key_cmp(const pool_event_key *a, const pool_event_key *b) {
+	if (a->time != b->time)
+		return a->time < b->time ? -1 : 1;
+	if (a->kind != b->kind)
+		return a->kind < b->kind ? -1 : 1;
+	if (a->order_lo != b->order_lo)
+		return a->order_lo < b->order_lo ? -1 : 1;
+	if (a->order_hi != b->order_hi)
+		return a->order_hi < b->order_hi ? -1 : 1;
+	if (a->slot != b->slot)
+		return a->slot < b->slot ? -1 : 1;
+	return 0;
+}
 
 /// Heap over `count` slots; the caller owns the arrays (capacity >= count each).
 typedef struct pool_event_queue {

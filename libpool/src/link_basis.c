@@ -31,7 +31,9 @@ static pool_link_basis_slot *slot_for(pool_link_basis_slot *slots, int capacity,
 }
 
 void pool_link_bases_clear(pool_link_bases *t) {
-	if (t->slots)
+	// Empty already (count counts the used slots): a shot without LINK clears nothing, where the
+	// table a large cluster grew would cost every reset a memset of all its slots.
+	if (t->slots && t->count > 0)
 		memset(t->slots, 0, sizeof *t->slots * (size_t)t->capacity);
 	t->count = 0;
 }

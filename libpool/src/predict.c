@@ -43,10 +43,11 @@ static double triangle_dist2(pool_vec3 a, pool_vec3 b, pool_vec3 c) {
 // curve inside the triangle of its control points P0, P0 + dv T / 2, P0 + dv T + da T^2 (in 3D:
 // airborne balls too); if that triangle stays farther than 2R from the origin, the balls
 // cannot touch. The margin 1e-9 (relative) covers the rounding of the control points.
-static inline int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
+// reach_tested: the caller found the pair within reach (pool_predict_pair_out_of_reach) already.
+static inline int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T, int reach_tested) {
 	if (!isfinite(T))
 		return 1;
-	if (pool_predict_pair_out_of_reach(dp, dv, da, R, T)) // cheaper still, enough for most pairs
+	if (!reach_tested && pool_predict_pair_out_of_reach(dp, dv, da, R, T)) // cheaper still, enough for most pairs
 		return 0;
 	const pool_vec3 p1 = pool_v3_madd(dp, 0.5 * T, dv);
 	const pool_vec3 p2 = pool_v3_madd(pool_v3_madd(dp, T, dv), T * T, da);
@@ -62,14 +63,14 @@ static inline int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, 
 	return triangle_dist2(dp, p1, p2) <= d2;
 }
 
-double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
+static inline double ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T, int reach_tested) {
 	const double d0 = 2.0 * R, touch = d0 + POOL_TOUCH_TOLERANCE;
 	const double dd = pool_v3_dot(dp, dp);
 	if (!(T >= 0.0))
 		return INFINITY;
 	// Apart (the hot path, no square root): most pairs are out of reach over the window.
 	const int apart = dd > touch * touch;
-	if (apart && !(T > 0.0 && may_touch(dp, dv, da, R, T)))
+	if (apart && !(T > 0.0 && may_touch(dp, dv, da, R, T, reach_tested)))
 		return INFINITY;
 	// f = |p|^2 - (2R)^2 with p(tau) = dp + dv tau + da tau^2.
 	const double pv = pool_v3_dot(dp, dv), vv = pool_v3_dot(dv, dv);
@@ -88,8 +89,19 @@ double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R
 	// Rate and curvature of the distance |p|: |p|' = p.p'/|p|, |p|'' = (p'.p' + p.p'')/|p| - (p.p')^2/|p|^3
 	// (the tangential part of dv curves a touching pair apart).
 	g.speed = -pv / dist;
-	g.accel = -((vv + 2.0 * pool_v3_dot(dp, da)) / dist - pv * pv / (dd * dist));
+	// The curvature decides only when rounding cannot tell the speed's sign (pool_contact_now):
+	// its two divisions are left out for the touching pairs that clearly approach or part.
+	const int speed_decides = g.speed > POOL_APPROACH_EPS || g.speed < -POOL_APPROACH_EPS;
+	g.accel = speed_decides ? 0.0 : -((vv + 2.0 * pool_v3_dot(dp, da)) / dist - pv * pv / (dd * dist));
 	return pool_contact_next(&g, T);
+}
+
+double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
+	return ball_ball(dp, dv, da, R, T, 0);
+}
+
+double pool_predict_ball_ball_in_reach(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T) {
+	return ball_ball(dp, dv, da, R, T, 1);
 }
 
 // Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `line` coming from the side where

@@ -18,6 +18,10 @@
 /// rules of contact.h: 0 when they collide now, else their next meeting.
 double pool_predict_ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T);
 
+/// pool_predict_ball_ball for a pair that pool_predict_pair_out_of_reach, with the same operands,
+/// found within reach (the schedule's pair loop): the same answer without that test again.
+double pool_predict_ball_ball_in_reach(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, double T);
+
 /// 1 when two balls of radius R with relative motion dp + dv tau + da tau^2 are apart beyond
 /// the touching band and cannot meet over [0, T] (T finite): the path moves at most
 /// (|dv| + |da| T) T from dp, each |.| bounded by the 1-norm (no square root). The cheap test

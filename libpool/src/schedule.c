@@ -135,8 +135,49 @@ static void begin_own(pool_sim *sim, int i, const pool_ball_state *s, double t) 
 	b->own_kind = kind;
 }
 
+// Body i's reach (pool_reach): its flags, and its box over its segment up to its own next event
+// or max_time. Every contact search of it asks about a window inside that stretch (it ends at the
+// earlier of the two bodies' own events and at max_time), so a pair whose boxes are apart is one
+// the pair loop's narrow phase would reject: the box test leaves the events the same to the bit.
+// The margin covers the touching band and the rounding of the paths, as the broadphase's pieces.
+static void reach_box(pool_sim *sim, int i) {
+	const pool_body *b = &sim->body[i];
+	const pool_segment *seg = &b->seg;
+	const pool_ball_state *s = &seg->start;
+	pool_reach *r = &sim->reach[i];
+	r->flags = (b->active ? POOL_REACH_IN_PLAY : 0) | (seg->model->translating ? POOL_REACH_MOVING : 0);
+	const double widen = sim->def.params.ball_radius + POOL_BROADPHASE_MARGIN;
+	// The window's end as the pair loop takes it (max_time were own_time NaN), and the path's.
+	const double end = b->own_time < sim->def.max_time ? b->own_time : sim->def.max_time;
+	double span = end - seg->t0;
+	span = seg->move_end < span ? seg->move_end : span;
+	double *box = r->box;
+	if (seg->model->translating && !(span < INFINITY)) {
+		box[0] = box[2] = -INFINITY; // an endless window (or a NaN): every pair
+		box[1] = box[3] = INFINITY;
+		return;
+	}
+	if (!seg->model->translating || !(span > 0.0)) {
+		box[0] = box[1] = s->pos.x;
+		box[2] = box[3] = s->pos.y;
+	} else {
+		pool_segment_range_1d(s->pos.x, s->vel.x, seg->acc.x, 0.0, span, &box[0], &box[1]);
+		pool_segment_range_1d(s->pos.y, s->vel.y, seg->acc.y, 0.0, span, &box[2], &box[3]);
+	}
+	box[0] -= widen;
+	box[1] += widen;
+	box[2] -= widen;
+	box[3] += widen;
+}
+
+// 1 when two reach boxes are apart (the balls cannot meet: reach_box).
+static inline int reach_apart(const double *a, const double *b) {
+	return a[0] > b[1] || b[0] > a[1] || a[2] > b[3] || b[2] > a[3];
+}
+
 void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
 	begin_own(sim, i, s, t);
+	reach_box(sim, i);
 	// The broadphase files the segment's reach up to its own next event: no pair search looks
 	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
 	// Before the shot's first prediction (balls being added) there is nothing to file it in yet.
@@ -158,10 +199,11 @@ static inline int next_body(pool_sim *sim, int grid, int j) {
 
 // Body i's earliest contact at `now` with another body, if it comes before *best (its own
 // event): *best becomes it, and the other body is returned (-1: none). grid: only the
-// broadphase's candidates, in index order; else every body. The same pairs in the same order
-// either way: the broadphase only leaves out bodies that cannot come within reach over the
-// window (broadphase.h).
-static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, pool_event_key *best) {
+// broadphase's candidates, in index order; else every body. boxes: bodies whose reach boxes are
+// apart are left out at once. The same pairs in the same order either way: the broadphase and
+// the boxes only leave out bodies that cannot come within reach over the window (broadphase.h,
+// reach_box).
+static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, int boxes, pool_event_key *best) {
 	const pool_params *p = &sim->def.params;
 	const pool_body *bi = &sim->body[i];
 	int partner = -1;
@@ -170,14 +212,18 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, p
 	pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
 	const pool_vec3 ai = bi->seg.acc;
 	const int mi = bi->seg.model->translating;
-	const double horizon_i = fmin(bi->own_time, sim->def.max_time);
+	const double horizon_i = earlier(sim->def.max_time, bi->own_time); // as fmin, were own_time NaN
 	const int cluster_i = pool_link_cluster_of(&sim->link, i);
+	// A body in play; when body i does not move, one that does.
+	const int need = mi ? POOL_REACH_IN_PLAY : POOL_REACH_IN_PLAY | POOL_REACH_MOVING;
+	const double *box_i = sim->reach[i].box;
 	if (grid)
 		pool_broadphase_query(&sim->broad, i, &bi->seg, now, horizon_i);
 	for (int j = next_body(sim, grid, -1); j >= 0; j = next_body(sim, grid, j)) {
-		const pool_body *bj = &sim->body[j];
-		if (j == i || !bj->active || (!mi && !bj->seg.model->translating))
+		const pool_reach *rj = &sim->reach[j];
+		if (j == i || (rj->flags & need) != need || (boxes && reach_apart(box_i, rj->box)))
 			continue;
+		const pool_body *bj = &sim->body[j];
 		// Contacts inside a cluster are its LCP's (link.c), not events.
 		if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
 			continue;
@@ -196,7 +242,7 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, p
 		}
 		if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
 			continue;
-		const double tau = pool_predict_ball_ball(dp, dv, da, p->ball_radius, T);
+		const double tau = pool_predict_ball_ball_in_reach(dp, dv, da, p->ball_radius, T);
 		if (!(tau <= T))
 			continue;
 		const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
@@ -221,14 +267,15 @@ static void repredict(pool_sim *sim, int i, double now) {
 		best.kind = (int)bi->own_kind;
 		const int grid = sim->broad.on;
 #ifdef POOL_BROADPHASE_VERIFY
-		// The verification build: the grid's answer must be the all-pairs one, to the bit.
+		// The verification build: the answer of the grid and the boxes must be that of every
+		// pair without them, to the bit.
 		pool_event_key all = best;
-		const int all_partner = grid ? earliest_contact(sim, i, now, 0, &all) : -1;
-		partner = earliest_contact(sim, i, now, grid, &best);
-		if (grid && (memcmp(&all, &best, sizeof best) != 0 || all_partner != partner))
+		const int all_partner = earliest_contact(sim, i, now, 0, 0, &all);
+		partner = earliest_contact(sim, i, now, grid, 1, &best);
+		if (memcmp(&all, &best, sizeof best) != 0 || all_partner != partner)
 			abort();
 #else
-		partner = earliest_contact(sim, i, now, grid, &best);
+		partner = earliest_contact(sim, i, now, grid, 1, &best);
 #endif
 	}
 	if (sim->broad.watching && partner != bi->partner)
@@ -244,6 +291,7 @@ void pool_schedule_predict_all(pool_sim *sim) {
 	for (int i = 0; i < sim->n; ++i) {
 		sim->keys[i] = (pool_event_key){INFINITY, 0, sim->cur[i].id, sim->cur[i].id, i};
 		sim->body[i].partner = -1;
+		reach_box(sim, i); // max_time as this run has it
 	}
 	pool_event_queue_build(&sim->queue, sim->n);
 	if (pool_broadphase_begin(&sim->broad, &sim->alloc, &sim->def.table, sim->def.params.ball_radius, sim->n))

@@ -62,6 +62,26 @@ static inline void pool_segment_path(const pool_segment *seg, double tau, pool_v
 	*vel = pool_v3_madd(s->vel, t, seg->acc);
 }
 
+/// The range [*lo, *hi] of one coordinate x0 + v t + a t^2 / 2 of a path over t in [t_lo, t_hi]
+/// (times from the segment's start): its ends and, when it turns inside (its speed changes sign
+/// there), its vertex. For the searches' boxes, which a margin widens beyond rounding: a vertex
+/// within rounding of an end is that end.
+static inline void pool_segment_range_1d(double x0, double v, double a, double t_lo, double t_hi, double *lo,
+                                         double *hi) {
+	const double e0 = x0 + t_lo * v + 0.5 * t_lo * t_lo * a, e1 = x0 + t_hi * v + 0.5 * t_hi * t_hi * a;
+	*lo = e0 < e1 ? e0 : e1;
+	*hi = e0 < e1 ? e1 : e0;
+	const double v0 = v + a * t_lo, v1 = v + a * t_hi;
+	if ((v0 < 0.0 && v1 > 0.0) || (v0 > 0.0 && v1 < 0.0)) { // a division only then
+		const double t = -v / a;
+		if (t > t_lo && t < t_hi) {
+			const double e = x0 + t * v + 0.5 * t * t * a;
+			*lo = e < *lo ? e : *lo;
+			*hi = e > *hi ? e : *hi;
+		}
+	}
+}
+
 /// The whole state tau >= 0 after the start, in closed form (every component clamped at its
 /// own end time, so any tau is safe).
 void pool_segment_state(const pool_segment *seg, const pool_params *p, double tau, pool_ball_state *out);

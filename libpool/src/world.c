@@ -199,7 +199,7 @@ void pool_sim_destroy(pool_sim *sim) {
 	if (!sim)
 		return;
 	const pool_allocator a = sim->alloc;
-	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work};
+	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work, sim->reach};
 	pool_link_free(&sim->link);
 	pool_history_free(&sim->history, &a);
 	pool_broadphase_free(&sim->broad, &a);
@@ -224,11 +224,11 @@ pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *e
 static pool_result reserve_balls(pool_sim *sim, int need) {
 	if (need > sim->cap_balls) {
 		const int cap = pool_mem_next_cap(sim->cap_balls, need);
-		void **arrays[] = {(void **)&sim->cur,  (void **)&sim->body, (void **)&sim->keys,
-		                   (void **)&sim->heap, (void **)&sim->hpos, (void **)&sim->work};
-		const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body), sizeof(pool_event_key),
-		                        sizeof(int),             sizeof(int),       sizeof(int)};
-		if (pool_mem_grow(&sim->alloc, arrays, elems, 6, sim->n, cap))
+		void **arrays[] = {(void **)&sim->cur,  (void **)&sim->body, (void **)&sim->keys, (void **)&sim->heap,
+		                   (void **)&sim->hpos, (void **)&sim->work, (void **)&sim->reach};
+		const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body), sizeof(pool_event_key), sizeof(int),
+		                        sizeof(int),             sizeof(int),       sizeof(pool_reach)};
+		if (pool_mem_grow(&sim->alloc, arrays, elems, 7, sim->n, cap))
 			return POOL_ERR_OUT_OF_MEMORY;
 		sim->cap_balls = cap;
 	}
@@ -295,13 +295,22 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		return pool_error_set(error, POOL_ERR_OFF_TABLE, "balls[%d].pos: off the table", idx);
 	// Above the cloth a ball inside its contact lines can still be inside a cushion's nose (on the
 	// cloth the lines are exactly where it touches one).
-	pool_rail nose_rail;
-	const double nose_gap = pool_table_nose_gap(&sim->def.table, ball->pos, R, &nose_rail);
-	if (ball->pos.z > R + tol && !(nose_gap >= -tol))
-		return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
-		                      pool_rail_name(nose_rail), -nose_gap);
+	if (ball->pos.z > R + tol) {
+		pool_rail nose_rail;
+		const double nose_gap = pool_table_nose_gap(&sim->def.table, ball->pos, R, &nose_rail);
+		if (!(nose_gap >= -tol))
+			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
+			                      pool_rail_name(nose_rail), -nose_gap);
+	}
+	// Most balls are at least 2R apart, which their squared distance tells without a square root
+	// (sqrt is monotone, and 2R is far above 2R - tol): the same answer for every pair.
+	const double apart2 = 4.0 * R * R;
 	for (int j = 0; j < sim->n; ++j) {
-		double d = pool_v3_len(pool_v3_sub(ball->pos, sim->cur[j].pos));
+		const pool_vec3 dp = pool_v3_sub(ball->pos, sim->cur[j].pos);
+		const double dd = pool_v3_dot(dp, dp);
+		if (dd >= apart2)
+			continue;
+		const double d = sqrt(dd);
 		if (d < 2.0 * R - tol)
 			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
 			                      (int)sim->cur[j].id, 2.0 * R - d);
@@ -366,15 +375,16 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 // below POOL_APPROACH_EPS dropped on the cloth): no impulse acted.
 static int no_impulse(const pool_sim *sim, const int *inv, const pool_ball_state *s, const pool_ball_state *before,
                       int count) {
-	if (memcmp(s, before, sizeof s[0] * (size_t)count) == 0)
-		return 1;
 	// (The common case, an impulse, changes a velocity by more than the clean-up of deriving a
-	// state does: vertical speeds below POOL_APPROACH_EPS, components below POOL_REST_EPS.)
+	// state does: vertical speeds below POOL_APPROACH_EPS, components below POOL_REST_EPS. It is
+	// told first, before comparing the states whole.)
 	const double R = sim->def.params.ball_radius;
 	for (int k = 0; k < count; ++k)
 		if (fabs(s[k].vel.x - before[k].vel.x) > POOL_APPROACH_EPS || fabs(s[k].vel.y - before[k].vel.y) > POOL_APPROACH_EPS ||
 		    R * pool_v3_len(pool_v3_sub(s[k].omega, before[k].omega)) > POOL_APPROACH_EPS)
 			return 0;
+	if (memcmp(s, before, sizeof s[0] * (size_t)count) == 0)
+		return 1;
 	pool_ball_state tidy[2];
 	for (int k = 0; k < count; ++k) {
 		tidy[k] = before[k];

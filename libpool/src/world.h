@@ -35,6 +35,21 @@ typedef struct pool_body {
 	int changed;              ///< scratch of pool_schedule_after_event: among the changed bodies
 } pool_body;
 
+/// pool_reach.flags: the body is in play (pool_body.active).
+#define POOL_REACH_IN_PLAY 1
+/// pool_reach.flags: its segment translates (the segment model's `translating`).
+#define POOL_REACH_MOVING 2
+
+/// What a contact search reads of every other body before anything else (schedule.c), kept
+/// apart from pool_body so that a search over every body reads a few cache lines.
+typedef struct pool_reach {
+	/// m, box in the plane (x_lo, x_hi, y_lo, y_hi) the centre stays in from the segment's start
+	/// to its own next event (or max_time), widened by R + POOL_BROADPHASE_MARGIN: two balls whose
+	/// boxes do not overlap cannot meet before either's own event
+	double box[4];
+	int flags; ///< POOL_REACH_IN_PLAY, POOL_REACH_MOVING
+} pool_reach;
+
 struct pool_sim {
 	pool_sim_def def;
 	pool_allocator alloc;
@@ -44,6 +59,7 @@ struct pool_sim {
 	int n, cap_balls;
 	pool_ball_state *cur; // segment start states (pool_sim_balls)
 	pool_body *body;
+	pool_reach *reach;    // by body, as the schedule keeps them
 	pool_event_key *keys;
 	int *heap, *hpos, *work;
 	pool_event_queue queue;

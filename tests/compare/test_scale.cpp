@@ -64,6 +64,11 @@ void families() {
 			CHECK(t.corner_mouth == 0.0 && t.side_mouth == 0.0, "%s %d: mouths %g %g", family.c_str(), n,
 			      t.corner_mouth, t.side_mouth);
 			CHECK(p.def.max_time == kScaleWindow, "%s %d: max_time %g", family.c_str(), n, p.def.max_time);
+			// The laws ODE and Bullet express: with libpool's defaults they would run other ones.
+			const pool_models thesis = pool_thesis_models();
+			CHECK(p.def.models.cushion == thesis.cushion && p.def.models.ball_ball_friction == thesis.ball_ball_friction &&
+			          p.def.models.squirt == thesis.squirt,
+			      "%s %d: not the thesis models", family.c_str(), n);
 			if (family == "gas") {
 				int moving = 0;
 				for (int i = 0; i < n; ++i) {
