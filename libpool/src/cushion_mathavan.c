@@ -35,7 +35,6 @@
 #include "cushion_mathavan.h"
 
 #include <math.h>
-#include <stdlib.h>
 
 #include "dopri5.h"
 #ifdef MATHAVAN_DEBUG
@@ -47,17 +46,15 @@
 /// opposes the direction it was decided (or last seen) to slide in. Rounding of the state's
 /// velocities is about 1e-16 of it.
 #define ZERO_SLIP 1e-10
-/// A sliding contact's slip this close to zero (of the speed scale) has arrived there: the rest of
-/// the way is taken in one step at its rate, and the slip cancelled (an error of about this times
-/// the friction's turn over that last bit).
-#define ARRIVED 1e-6
-/// A sliding contact whose slip would reach zero within this many steps is followed in its own
-/// variable, −ln |slip| (approach_rate).
-#define APPROACH_STEPS 1.0
-#define HOLD 1e-3
-#define PASS 1e-3
-/// ... and whose rate points back at zero: cos² of the angle from the slip's opposite.
-#define APPROACH_ALIGNED 0.8
+/// A step landing a contact on zero slip holds its direction once its slip is below this
+/// fraction of the slip at the step's start.
+#define LAND_HOLD 1e-3
+/// A sliding contact's slip turning faster than this many times over a step: the step follows
+/// its slow manifold (contact_forces).
+#define QUASI 3.0
+/// ... and whose friction that would hold it is within this many times its cone (the slow
+/// manifold is then about where that friction is cut to the cone).
+#define MARGINAL 1.5
 /// The first step, times tolerance^(1/5) and the frictionless impact's impulse.
 #define FIRST_STEP 2.0
 /// Step tries before the impact is given up as jammed (Petit's law takes it; none of the random
@@ -78,7 +75,8 @@ typedef struct law {
 // while their slip is (about) zero or beyond a zero crossing inside a step.
 typedef struct modes {
 	bool nose_stuck, cloth_stuck, airborne;
-	bool nose_departing, cloth_departing; // slid from zero slip, still within `hold` of it
+	bool nose_quasi, cloth_quasi; // this step: a sliding contact's slip too small for the step
+	double nose_small, cloth_small; // slips this small slide along the contacts' directions
 	double nose_dir[2], cloth_dir[2];
 } modes;
 
@@ -86,9 +84,7 @@ typedef struct impact {
 	law k;
 	modes m;
 	double zero;  // ZERO_SLIP times the speed scale
-	double hold;  // HOLD times the speed scale
-	int approach; // NOSE or CLOTH: the independent variable is −ln |slip| of that contact; else p
-	bool probing; // start_direction: sliding contacts follow their directions even at zero slip
+	unsigned frozen; // bit i: sliding contact i follows its direction even at zero slip
 } impact;
 
 typedef struct forces {
@@ -105,6 +101,7 @@ static void cloth_slip(const double *y, double out[2]) {
 	out[1] = y[VY] + y[UX];
 }
 static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
+static double sq(double x) { return x * x; }
 
 static void unit_or_keep(const double v[2], double out[2]) {
 	const double n = sqrt(dot2(v, v));
@@ -187,15 +184,19 @@ static void contact_forces(const impact *im, const double *y, forces *o) {
 	bool nose_held = m->nose_stuck, cloth_held = m->cloth_stuck || m->airborne;
 	if (!nose_held) {
 		nose_slip(k, y, slip);
-		const double lim = m->nose_departing ? im->hold : im->zero;
-		nose_held = !im->probing && dot2(slip, slip) <= lim * lim;
-		slide_direction(slip, m->nose_dir, im->zero, dn);
+		nose_held = !(im->frozen & 1u) && (m->nose_quasi || dot2(slip, slip) <= im->zero * im->zero);
+		if (im->frozen & 1u)
+			dn[0] = m->nose_dir[0], dn[1] = m->nose_dir[1];
+		else
+			slide_direction(slip, m->nose_dir, m->nose_small, dn);
 	}
 	if (!cloth_held) {
 		cloth_slip(y, slip);
-		const double lim = m->cloth_departing ? im->hold : im->zero;
-		cloth_held = !im->probing && dot2(slip, slip) <= lim * lim;
-		slide_direction(slip, m->cloth_dir, im->zero, dc);
+		cloth_held = !(im->frozen & 2u) && (m->cloth_quasi || dot2(slip, slip) <= im->zero * im->zero);
+		if (im->frozen & 2u)
+			dc[0] = m->cloth_dir[0], dc[1] = m->cloth_dir[1];
+		else
+			slide_direction(slip, m->cloth_dir, m->cloth_small, dc);
 	}
 	forces_for(im, nose_held, cloth_held, dn, dc, o);
 	if (nose_held && !m->nose_stuck && (!o->ok || dot2(o->f, o->f) > k->mu_i * k->mu_i)) {
@@ -228,26 +229,6 @@ static void derivative_of(const impact *im, const double *y, const forces *o, do
 	dy[IMPULSE] = 1.0;
 }
 
-// A sliding contact closing on zero slip: its friction turns as a power of the impulse left to
-// the zero, a singularity no step in p gets near cheaply. In the variable q = −ln |slip| the
-// approach is smooth (the direction converges exponentially in q, the state's change decays as
-// e^−q): dy/dq = dy/dp · dp/dq, dp/dq = |slip|² / closing, closing = −slip · slip' (the impulse
-// the slip would take to reach zero at its present rate). A stage where the slip does not close
-// gets a large finite rate, which the step control refuses.
-static double approach_rate(const impact *im, const double *y, const double *dy) {
-	double sl[2], rate[2];
-	if (im->approach == NOSE) {
-		nose_slip(&im->k, y, sl);
-		nose_slip(&im->k, dy, rate);
-	} else {
-		cloth_slip(y, sl);
-		cloth_slip(dy, rate);
-	}
-	const double s2 = sl[0] * sl[0] + sl[1] * sl[1], closing = -(sl[0] * rate[0] + sl[1] * rate[1]);
-	const double limit = 1e6 * sqrt(s2) / sqrt(rate[0] * rate[0] + rate[1] * rate[1] + 1e-300);
-	return closing * limit > s2 ? s2 / closing : limit;
-}
-
 #ifdef MATHAVAN_DEBUG
 static int debug_stages;
 #endif
@@ -262,11 +243,6 @@ static void derivative(const void *ctx, const double *y, double *dy) {
 	forces o;
 	contact_forces(im, y, &o);
 	derivative_of(im, y, &o, dy);
-	if (im->approach >= 0) {
-		const double dp = approach_rate(im, y, dy);
-		for (int i = 0; i < DIM; ++i)
-			dy[i] *= dp;
-	}
 #ifdef MATHAVAN_DEBUG
 	if (debug_stages) {
 		double a[2];
@@ -307,7 +283,7 @@ static void slip_rates(const impact *im, const double *y, double nose[2], double
 static void start_direction(impact *im, const double *y, int i) {
 	double *dir = i == NOSE ? im->m.nose_dir : im->m.cloth_dir;
 	double rate[2][2], a[2], B[2][2];
-	im->probing = true;
+	im->frozen = 3u;
 	dir[0] = dir[1] = 0.0;
 	slip_rates(im, y, rate[NOSE], rate[CLOTH]);
 	a[0] = rate[i][0], a[1] = rate[i][1];
@@ -336,7 +312,7 @@ static void start_direction(impact *im, const double *y, int i) {
 		if (lambda == lo && lambda == hi)
 			break;
 	}
-	im->probing = false;
+	im->frozen = 0u;
 	dir[0] = dir[1] = 0.0;
 	unit_or_keep(d, dir);
 	if (!(dot2(dir, dir) > 0.0))
@@ -375,8 +351,6 @@ static void decide_modes(impact *im, const double *y, const choice *ch) {
 				m->nose_stuck = nose_stick;
 				m->cloth_stuck = cloth_stick;
 				const bool from_zero[2] = {!nose_stick && ch->zero[NOSE], !air && !cloth_stick && ch->zero[CLOTH]};
-				m->nose_departing = from_zero[NOSE];
-				m->cloth_departing = from_zero[CLOTH];
 				for (int i = 0; i < 2; ++i)
 					if (!from_zero[i])
 						unit_or_keep(slip[i], i == NOSE ? m->nose_dir : m->cloth_dir);
@@ -623,13 +597,41 @@ static void slip_and_rate(const impact *im, int i, const double *y, const double
 	}
 }
 
-// A slip heading for zero: its rate points back within about 25 degrees of its opposite.
-static bool heading_to_zero(const double slip[2], const double rate[2]) {
-	const double closing = -dot2(slip, rate);
-	return closing > 0.0 && closing * closing > APPROACH_ALIGNED * dot2(slip, slip) * dot2(rate, rate);
-}
-
 static bool sliding(const modes *m, int i) { return i == NOSE ? !m->nose_stuck : !m->airborne && !m->cloth_stuck; }
+
+// The landing of sliding contact i on zero slip (its slip s, closing): with every sliding
+// direction held, the system's slope is constant, and its slip's rate is affine in i's direction
+// d, rate(d) = a + B d; the d for which that rate points straight back at zero, a + B d = −lambda
+// s/|s| with |d| = 1, lambda > 0 (a quadratic in lambda), lands the slip on zero after the
+// impulse |s| / lambda. That held direction is the mean of the turning one over the rest of the
+// approach, to the second order in its turn. Sets i's direction to d and returns the impulse
+// (INFINITY: none), the slope in k.
+static double landing(impact *im, const double *y, int i, const double s[2], double *k) {
+	double *dir = i == NOSE ? im->m.nose_dir : im->m.cloth_dir;
+	double sl[2], a[2], B[2][2];
+	im->frozen = 3u;
+	dir[0] = dir[1] = 0.0;
+	derivative(im, y, k);
+	slip_and_rate(im, i, y, k, sl, a);
+	for (int j = 0; j < 2; ++j) {
+		double r[2];
+		dir[0] = j == 0, dir[1] = j == 1;
+		derivative(im, y, k);
+		slip_and_rate(im, i, y, k, sl, r);
+		B[0][j] = r[0] - a[0];
+		B[1][j] = r[1] - a[1];
+	}
+	const double det = B[0][0] * B[1][1] - B[0][1] * B[1][0], n = sqrt(dot2(s, s));
+	const double u[2] = {(B[1][1] * a[0] - B[0][1] * a[1]) / det, (B[0][0] * a[1] - B[1][0] * a[0]) / det};
+	const double w[2] = {(B[1][1] * s[0] - B[0][1] * s[1]) / (det * n), (B[0][0] * s[1] - B[1][0] * s[0]) / (det * n)};
+	const double ww = dot2(w, w), uw = dot2(u, w), disc = uw * uw - ww * (dot2(u, u) - 1.0);
+	const double lambda = ww > 0.0 && disc >= 0.0 ? (-uw + sqrt(disc)) / ww : -1.0;
+	dir[0] = -(u[0] + lambda * w[0]);
+	dir[1] = -(u[1] + lambda * w[1]);
+	derivative(im, y, k);
+	im->frozen = 0u;
+	return det != 0.0 && lambda > 0.0 && dot2(dir, s) > 0.0 ? n / lambda : INFINITY;
+}
 
 pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_params *p, pool_vec3 n,
                                             double tolerance) {
@@ -643,7 +645,7 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 	double y[DIM] = {pool_v3_dot(st->vel, ex),         pool_v3_dot(st->vel, ey),         pool_v3_dot(st->vel, ez),
 	                 R * pool_v3_dot(st->omega, ex), R * pool_v3_dot(st->omega, ey), R * pool_v3_dot(st->omega, ez),
 	                 0.0,                            0.0};
-	impact im = {{c, -n.z, p->mu_cushion_mathavan, p->mu_table}, {0}, 0.0, 0.0, -1, false};
+	impact im = {{c, -n.z, p->mu_cushion_mathavan, p->mu_table}, {0}, 0.0, 0};
 	const double z0 = im.k.c * y[VY] + im.k.s * y[VZ];
 	if (!(z0 > 0.0))
 		return POOL_MATHAVAN_SEPARATING;
@@ -653,104 +655,82 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 	for (int i = 0; i < UZ + 1; ++i)
 		scale = fmax(scale, fabs(y[i]));
 	im.zero = ZERO_SLIP * scale;
-	im.hold = (getenv("HOLD") ? atof(getenv("HOLD")) : HOLD) * scale;
-	const double arrived = ARRIVED * scale;
 	double atol[DIM];
 	for (int i = 0; i < DIM; ++i)
 		atol[i] = tolerance * scale * (i == WORK ? z0 : 1.0);
 	const double e = p->e_cushion_mathavan, frictionless = (1.0 + e) * z0 / (c * c);
 	modes_after(&im, y, EV_COUNT);
 	phase ph = {false, 0.0};
-	// Step sizes in p (the first about what the control settles on for smooth impacts) and in q.
-	double h = FIRST_STEP * pow(tolerance, 0.2) * frictionless, hq = 1.0, q_left = 0.0, approach_from = 0.0;
-	double k1[DIM];
+	// The first step: about what the control settles on for smooth impacts.
+	double h = FIRST_STEP * pow(tolerance, 0.2) * frictionless;
+	double k1[DIM], err_last = 1e-4;
+	bool rejected = false;
 	derivative(&im, y, k1);
 	pool_dopri5_step step;
 	for (int tries = 0;; ++tries) {
 		if (tries == MAX_TRIES)
 			return POOL_MATHAVAN_JAMMED;
-		if (im.approach < 0) {
-			// A sliding contact closing on zero slip within a few steps is followed in q
-			// (approach_rate) until `arrived`.
-			double nearest = APPROACH_STEPS * h;
-			for (int i = 0; i < 2; ++i) {
-				if (!sliding(&im.m, i))
-					continue;
-				double sl[2], rate[2];
-				slip_and_rate(&im, i, y, k1, sl, rate);
-				if (dot2(sl, sl) <= im.zero * im.zero)
-					continue;
-				unit_or_keep(sl, i == NOSE ? im.m.nose_dir : im.m.cloth_dir);
-				const double d = closing_distance(sl, rate, im.zero);
-				if (d < nearest && heading_to_zero(sl, rate)) {
-					nearest = d;
-					im.approach = i;
-					q_left = log(sqrt(dot2(sl, sl)) / arrived);
-					approach_from = dot2(sl, sl);
-				}
-			}
-			if (im.approach >= 0)
-				derivative(&im, y, k1);
-		} else {
-			for (int i = 0; i < 2; ++i) {
-				double sl[2];
-				if (i == NOSE)
-					nose_slip(&im.k, y, sl);
-				else
-					cloth_slip(y, sl);
-				if (sliding(&im.m, i) && dot2(sl, sl) > im.zero * im.zero)
-					unit_or_keep(sl, i == NOSE ? im.m.nose_dir : im.m.cloth_dir);
-			}
-			// Back to p where the slip turns away from zero (it passes by).
-			double sl[2], rate[2], dy[DIM];
-			const int i = im.approach;
-			im.approach = -1;
-			derivative(&im, y, dy);
-			slip_and_rate(&im, i, y, dy, sl, rate);
-			if (heading_to_zero(sl, rate) && closing_distance(sl, rate, im.zero) < APPROACH_STEPS * h) {
-				im.approach = i;
-			} else if (dot2(sl, sl) <= fmax(arrived * arrived, PASS * PASS * approach_from)) {
-				// passing zero this close: it is there
-				modes_after(&im, y, i == NOSE ? EV_NOSE_SLIP_ZERO : EV_CLOTH_SLIP_ZERO);
-				derivative(&im, y, k1);
+		// Sliding contacts oppose their slip. One that would reach zero slip within the step (at
+		// its present rate) is landed there: the step is cut to end where the slip, along the
+		// direction held that brings it to zero (landing), reaches it; near there, the direction
+		// is held (the slip's own is lost in the step's error). Its small miss is cancelled.
+		double hs = h;
+		int lands = -1;
+		im.m.nose_small = im.m.cloth_small = im.zero;
+		for (int i = 0; i < 2; ++i) {
+			if (!sliding(&im.m, i))
 				continue;
+			double sl[2], rate[2], kl[DIM];
+			slip_and_rate(&im, i, y, k1, sl, rate);
+			if (dot2(sl, sl) <= im.zero * im.zero)
+				continue;
+			double *dir = i == NOSE ? im.m.nose_dir : im.m.cloth_dir;
+			unit_or_keep(sl, dir);
+			const double reach = closing_distance(sl, rate, im.zero);
+			if (!(reach < hs))
+				continue;
+			const double keep[2] = {dir[0], dir[1]};
+			const double d = landing(&im, y, i, sl, kl);
+			if (d < hs) {
+				hs = d;
+				lands = i;
+				*(i == NOSE ? &im.m.nose_small : &im.m.cloth_small) = LAND_HOLD * sqrt(dot2(sl, sl));
 			} else {
-				for (int j = 0; j < DIM; ++j)
-					k1[j] = dy[j];
-				continue;
+				dir[0] = keep[0], dir[1] = keep[1];
 			}
 		}
-		if (im.approach >= 0 && !(q_left > 0.0)) {
-			// Arrived: the last bit at the present rate, then the slip is zero.
-			const int i = im.approach;
-			im.approach = -1;
-			double dy[DIM], sl[2], rate[2];
-			derivative(&im, y, dy);
-			slip_and_rate(&im, i, y, dy, sl, rate);
-			const double d = closing_distance(sl, rate, 0.0);
-			for (int j = 0; j < DIM && d < INFINITY; ++j)
-				y[j] += d * dy[j];
-#ifdef MATHAVAN_COUNT
-			++pool_mathavan_event_count[8 + i];
-#endif
-			modes_after(&im, y, i == NOSE ? EV_NOSE_SLIP_ZERO : EV_CLOTH_SLIP_ZERO);
-			derivative(&im, y, k1);
-			continue;
-		}
-		{
+		if (lands != 1 && sliding(&im.m, CLOTH)) { // the nose lands: the cloth's own direction
 			double sl[2];
-			nose_slip(&im.k, y, sl);
-			if (dot2(sl, sl) > im.hold * im.hold)
-				im.m.nose_departing = false;
 			cloth_slip(y, sl);
-			if (dot2(sl, sl) > im.hold * im.hold)
-				im.m.cloth_departing = false;
+			if (dot2(sl, sl) > im.zero * im.zero)
+				unit_or_keep(sl, im.m.cloth_dir);
 		}
-		const bool in_q = im.approach >= 0;
-		const double hs = in_q ? fmin(hq, q_left) : h;
-#ifdef MATHAVAN_DEBUG
-		debug_stages = 0;
-#endif
+		// A sliding contact whose slip the step would turn over many times (its friction's turn
+		// rate, about 7/2 mu N / |slip|, times the step above QUASI) follows its slow manifold: the
+		// friction that would hold it, cut to its cone (the direction its slip turns to at once).
+		{
+			forces o, held;
+			contact_forces(&im, y, &o);
+			double sl[2], dn[2], dc[2];
+			nose_slip(&im.k, y, sl);
+			im.m.nose_quasi = false;
+			if (lands != NOSE && sliding(&im.m, NOSE) && dot2(sl, sl) * QUASI * QUASI < sq(3.5 * im.k.mu_i * hs)) {
+				dn[0] = -o.f[0] / im.k.mu_i, dn[1] = -o.f[1] / im.k.mu_i;
+				dc[0] = -o.g[0], dc[1] = -o.g[1];
+				unit_or_keep(dc, dc);
+				forces_for(&im, true, im.m.cloth_stuck || im.m.airborne, dn, dc, &held);
+				im.m.nose_quasi = held.ok && dot2(held.f, held.f) < sq(MARGINAL * im.k.mu_i);
+			}
+			cloth_slip(y, sl);
+			im.m.cloth_quasi = false;
+			if (lands != CLOTH && sliding(&im.m, CLOTH) && dot2(sl, sl) * QUASI * QUASI < sq(3.5 * im.k.mu_c * o.nc * hs)) {
+				dn[0] = -o.f[0] / im.k.mu_i, dn[1] = -o.f[1] / im.k.mu_i;
+				forces_for(&im, im.m.nose_stuck, true, dn, dn, &held);
+				im.m.cloth_quasi = held.ok && dot2(held.g, held.g) < sq(MARGINAL * im.k.mu_c * held.nc);
+			}
+			if (im.m.nose_quasi || im.m.cloth_quasi)
+				derivative(&im, y, k1);
+		}
 		pool_dopri5_take(derivative, &im, DIM, y, k1, hs, &step);
 		double err = 0.0;
 		for (int i = 0; i < IMPULSE; ++i)
@@ -760,20 +740,20 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			double a[2], b[2];
 			nose_slip(&im.k, y, a);
 			cloth_slip(y, b);
-			fprintf(stderr, "try %d q %d p %.6g h %.3g err %.3g modes ns%d cs%d air%d slips I (%.3g %.3g) C (%.3g %.3g) vz %.3g z %.3g W %.4g\n", tries, im.approach, y[IMPULSE] / frictionless, in_q ? hs : hs / frictionless, err, im.m.nose_stuck, im.m.cloth_stuck, im.m.airborne, a[0], a[1], b[0], b[1], y[VZ], im.k.c * y[VY] + im.k.s * y[VZ], y[WORK]);
-			fprintf(stderr, "     err");
-			for (int i = 0; i < DIM; ++i) fprintf(stderr, " %.2g", fabs(step.err[i]) / atol[i]);
-			fprintf(stderr, "  dy");
-			for (int i = 0; i < DIM; ++i) fprintf(stderr, " %.2g", step.y1[i] - y[i]);
-			fprintf(stderr, "\n");
+			fprintf(stderr, "try %d p %.6g h %.3g err %.3g modes ns%d cs%d air%d slips I (%.3g %.3g) C (%.3g %.3g) vz %.3g z %.3g W %.4g\n", tries, y[IMPULSE] / frictionless, hs / frictionless, err, im.m.nose_stuck, im.m.cloth_stuck, im.m.airborne, a[0], a[1], b[0], b[1], y[VZ], im.k.c * y[VY] + im.k.s * y[VZ], y[WORK]);
 		}
 #endif
-		// Step control for the error of order 5 (exponent 1/4: two square roots, not pow).
-		const double grow = err > 0.0 ? fmin(5.0, fmax(0.2, 0.9 * pow(err, -0.2))) : 5.0;
-		if (err > 1.0 && hs > (in_q ? 1e-9 : 1e-12 * frictionless)) {
-			*(in_q ? &hq : &h) = hs * grow;
+		// Step control for the error of order 5.
+		// Step control (Hairer's for DOPRI5: the error's trend from the last accepted step
+		// damps the growth; no growth right after a rejection).
+		const double e_now = fmax(err, 1e-10);
+		const double grow = fmin(5.0, fmax(0.1, 0.9 * pow(e_now, -0.17) * pow(err_last, 0.04)));
+		if (err > 1.0 && hs > 1e-12 * frictionless) {
+			h = hs * fmin(grow, 1.0);
+			rejected = true;
 			continue;
 		}
+		err_last = fmax(err, 1e-4);
 		// The earliest event inside the step.
 		event first = EV_COUNT;
 		double theta = 2.0;
@@ -788,17 +768,25 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			if (t < theta)
 				theta = t, first = (event)ev;
 		}
+		if (first == EV_COUNT && lands >= 0) { // landed: the slip is zero
+			for (int i = 0; i < DIM; ++i)
+				y[i] = step.y1[i];
+			im.m.nose_small = im.m.cloth_small = im.zero;
+#ifdef MATHAVAN_COUNT
+			++pool_mathavan_event_count[8 + lands];
+#endif
+			modes_after(&im, y, lands == NOSE ? EV_NOSE_SLIP_ZERO : EV_CLOTH_SLIP_ZERO);
+			derivative(&im, y, k1);
+			continue;
+		}
 		if (first == EV_COUNT) {
 			for (int i = 0; i < DIM; ++i) {
 				y[i] = step.y1[i];
 				k1[i] = step.k[6][i];
 			}
-			if (in_q) {
-				q_left -= hs;
-				hq = hs * grow;
-			} else {
-				h = hs * grow;
-			}
+			if (hs == h)
+				h = hs * (rejected ? fmin(grow, 1.0) : grow);
+			rejected = false;
 			if (!ph.restitution && y[IMPULSE] > JAM_IMPULSES * frictionless)
 				return POOL_MATHAVAN_JAMMED;
 			continue;
@@ -810,7 +798,6 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 #ifdef MATHAVAN_COUNT
 		++pool_mathavan_event_count[first];
 #endif
-		im.approach = -1; // events change the modes: the approach is looked at again
 		if (first == EV_END) {
 			if (ph.restitution)
 				break;
@@ -833,5 +820,13 @@ bool pool_cushion_mathavan_resolve(const pool_sim_def *def, pool_ball_state *s, 
 	if (def->models.cushion != POOL_CUSHION_MATHAVAN2010 || s->motion == POOL_MOTION_AIRBORNE ||
 	    fabs(s->pos.z - def->params.ball_radius) > POOL_TOUCH_TOLERANCE)
 		return false;
+#ifdef MATHAVAN_TRACE
+	const pool_ball_state in = *s;
+	const long e0 = pool_mathavan_evals;
+	const bool r = pool_cushion_mathavan(s, &def->params, n, POOL_MATHAVAN_TOLERANCE) != POOL_MATHAVAN_JAMMED;
+	fprintf(stderr, "impact v %.4f %.4f %.4f w %.3f %.3f %.3f n %.4f %.4f %.4f evals %ld\n", in.vel.x, in.vel.y, in.vel.z, in.omega.x, in.omega.y, in.omega.z, n.x, n.y, n.z, pool_mathavan_evals - e0);
+	return r;
+#else
 	return pool_cushion_mathavan(s, &def->params, n, POOL_MATHAVAN_TOLERANCE) != POOL_MATHAVAN_JAMMED;
+#endif
 }

@@ -19,7 +19,7 @@
 /// the same equations integrated far finer (tools/mathavan_reference.c) by at most
 /// MATHAVAN_RANDOM_WORST of the speed scale over random impacts (0.1-8 m/s, any incidence, spin
 /// and side; test_model_fidelity.c). Cost: tools/bench_models.c.
-#define POOL_MATHAVAN_TOLERANCE 1e-8
+#define POOL_MATHAVAN_TOLERANCE 1e-6
 
 /// What pool_cushion_mathavan did.
 typedef enum pool_mathavan_outcome {
