@@ -55,6 +55,10 @@
 /// ... and whose friction that would hold it is within this many times its cone (the slow
 /// manifold is then about where that friction is cut to the cone).
 #define MARGINAL 1.5
+/// A contact sliding from zero slip is consistent when its slip's rate along its direction is
+/// above minus this fraction of its friction's own rate, 7/2 mu: at a stick's marginal end it grows
+/// from rest, at rate 0 (the end is located to about this).
+#define MARGINAL_RATE 1e-5
 /// The first step, times tolerance^(1/5) and the frictionless impact's impulse.
 #define FIRST_STEP 2.0
 /// Step tries before the impact is given up as jammed (Petit's law takes it; none of the random
@@ -330,23 +334,27 @@ static bool directions_from_zero(impact *im, const double *y, const bool from_ze
 	double rate[2][2];
 	slip_rates(im, y, rate[NOSE], rate[CLOTH]);
 	const double *dir[2] = {im->m.nose_dir, im->m.cloth_dir};
-	for (int i = 0; i < 2; ++i)
-		if (from_zero[i] && !(dot2(rate[i], dir[i]) > 0.0))
+	for (int i = 0; i < 2; ++i) // at a stick's marginal end the slip grows from rest: rate ~ 0
+		if (from_zero[i] && !(dot2(rate[i], dir[i]) > -MARGINAL_RATE * 3.5 * (i == NOSE ? im->k.mu_i : im->k.mu_c)))
 			return false;
 	return true;
 }
 
-// Tries the modes (stick where allowed first, the cloth before the air); keeps the first that is
-// consistent, else the last tried (all sliding, off the cloth if it must).
+// Tries the modes (stick where allowed first, the cloth before the air) and keeps the first that
+// is consistent. None (friction beyond any cloth, where Coulomb's law has no solution): all
+// sliding, on the cloth unless it would pull.
 static void decide_modes(impact *im, const double *y, const choice *ch) {
 	const law *k = &im->k;
+	modes *m = &im->m;
 	double slip[2][2];
 	nose_slip(k, y, slip[NOSE]);
 	cloth_slip(y, slip[CLOTH]);
-	for (int air = ch->airborne || y[VZ] > 0.0; air < 2; ++air)
+	int fallback_air = -1;
+	bool cloth_pulls = false; // on the cloth, all sliding, its normal force would be negative
+	for (int air = ch->airborne || y[VZ] > 0.0; air < 2 && (air == 0 || ch->airborne || y[VZ] > 0.0 || cloth_pulls);
+	     ++air) {
 		for (int nose_stick = ch->zero[NOSE] && !ch->slide[NOSE]; nose_stick >= 0; --nose_stick)
 			for (int cloth_stick = !air && ch->zero[CLOTH] && !ch->slide[CLOTH]; cloth_stick >= 0; --cloth_stick) {
-				modes *m = &im->m;
 				m->airborne = air;
 				m->nose_stuck = nose_stick;
 				m->cloth_stuck = cloth_stick;
@@ -357,6 +365,10 @@ static void decide_modes(impact *im, const double *y, const choice *ch) {
 				bool ok = directions_from_zero(im, y, from_zero);
 				forces o;
 				contact_forces(im, y, &o);
+				if (!nose_stick && !cloth_stick && fallback_air < 0 && (air || o.nc >= 0.0))
+					fallback_air = air;
+				if (!air && !nose_stick && !cloth_stick)
+					cloth_pulls = !(o.nc >= 0.0);
 				ok = ok && o.ok && (air || o.nc >= 0.0);
 				if (nose_stick)
 					ok = ok && dot2(o.f, o.f) <= k->mu_i * k->mu_i;
@@ -366,12 +378,20 @@ static void decide_modes(impact *im, const double *y, const choice *ch) {
 				{
 					double rn[2], rc[2];
 					slip_rates(im, y, rn, rc);
-					fprintf(stderr, "    decide air %d ns %d cs %d: fromzero %d %d dirs (%.4g %.4g) (%.4g %.4g) rates (%.4g %.4g) (%.4g %.4g) f (%.4g %.4g) g (%.4g %.4g) nc %.4g ok %d\n", air, nose_stick, cloth_stick, from_zero[0], from_zero[1], m->nose_dir[0], m->nose_dir[1], m->cloth_dir[0], m->cloth_dir[1], rn[0], rn[1], rc[0], rc[1], o.f[0], o.f[1], o.g[0], o.g[1], o.nc, ok);
+					fprintf(stderr, "    decide air %d ns %d cs %d: fromzero %d %d dirs (%.4g %.4g) (%.4g %.4g) rates (%.4g %.4g) (%.4g %.4g) f (%.4g %.4g) g (%.4g %.4g) nc %.4g ok %d vz %g\n", air, nose_stick, cloth_stick, from_zero[0], from_zero[1], m->nose_dir[0], m->nose_dir[1], m->cloth_dir[0], m->cloth_dir[1], rn[0], rn[1], rc[0], rc[1], o.f[0], o.f[1], o.g[0], o.g[1], o.nc, ok, y[VZ]);
 				}
 #endif
 				if (ok)
 					return;
 			}
+	}
+	m->airborne = fallback_air == 1 || (fallback_air < 0 && cloth_pulls);
+	m->nose_stuck = m->cloth_stuck = false;
+	const bool from_zero[2] = {ch->zero[NOSE], !m->airborne && ch->zero[CLOTH]};
+	for (int i = 0; i < 2; ++i)
+		if (!from_zero[i])
+			unit_or_keep(slip[i], i == NOSE ? m->nose_dir : m->cloth_dir);
+	directions_from_zero(im, y, from_zero);
 }
 
 // ---------------------------------------------------------------- events
