@@ -36,7 +36,7 @@ static void time_law(const char *name, int mathavan, const pool_params *p, const
 		for (int i = 0; i < IMPACTS; ++i) {
 			pool_ball_state s = in[i];
 			if (mathavan)
-				pool_cushion_mathavan(&s, p, n, POOL_MATHAVAN_STEPS);
+				pool_cushion_mathavan(&s, p, n, POOL_MATHAVAN_TOLERANCE);
 			else
 				pool_collide(&s, p->ball_radius, p->ball_mass, NULL, p->ball_radius, 0.0, n, p->e_cushion, p->mu_cushion);
 			acc += s.vel.y;
@@ -133,7 +133,7 @@ int main(int argc, char **argv) {
 	}
 	time_law("petit (pool_collide)", 0, p, in, n);
 	char name[64];
-	snprintf(name, sizeof name, "mathavan2010 (%d steps)", POOL_MATHAVAN_STEPS);
+	snprintf(name, sizeof name, "mathavan2010 (tolerance %g)", POOL_MATHAVAN_TOLERANCE);
 	time_law(name, 1, p, in, n);
 	for (int g = 0; g < 2; ++g) {
 		const double gap = g ? 1e-4 : 0.0;

@@ -1,194 +1,881 @@
-// Mathavan, Jackson & Parkin (2010) cushion impact, integrated over the nose's normal impulse.
+// Mathavan, Jackson & Parkin (2010) cushion impact: the equations of motion over the normal
+// impulse, integrated adaptively with the contacts' stick-slip transitions located exactly.
 //
 // Frame of the impact: y towards the cushion (horizontal), z up, x = y × z along the rail. The
 // nose touches the ball at r_I = R (0, c, s) from its centre (c = cos θ, s = sin θ; sin θ = 2/5 at
 // the paper's h = 7R/5, here taken from the actual normal), the cloth at r_C = (0, 0, −R).
-// Units: velocities v, the surface speeds u = R ω, and impulses per unit mass, so the equations
-// hold neither mass nor radius. Per impulse step dp at the nose (the paper's equations (12)-(17),
-// derived again in vector form):
-//   1. the normal impulse dp along −(0, c, s): v_y −= c dp, v_z −= s dp;
-//   2. friction f at the nose, in its tangent plane (x, y' = (0, −s, c)), against its slip
-//      s_I = (v_x + s u_y − c u_z, −s v_y + c v_z + u_x), |f| <= mu_cushion_mathavan dp;
-//   3. the cloth's normal impulse: whatever brings v_z back to 0 (the ball stays on the cloth),
-//      never pulling;
-//   4. friction g at the cloth against its slip s_C = (v_x − u_y, v_y + u_x), |g| <= mu_table
-//      times the cloth's normal impulse.
-// A tangential impulse at either contact changes that contact's slip by 7/2 of itself, so a
-// contact whose slip friction can cancel within the step's bound sticks exactly (f = −s / 7/2):
-// Coulomb's stick-slip without the chatter of a fixed direction. Sliding friction acts along the
-// slip extrapolated to the middle of the step from the last two steps: second order while the
-// contacts slide. A step where a contact changes between sticking and sliding is taken again in
-// POOL_MATHAVAN_SUBSTEPS substeps: the scheme's error there is of the first order in the step.
-// Compression lasts while the nose's normal velocity ż'_I = c v_y + s v_z is positive; the work of
-// the normal force W_c = ∫ ż'_I dp (trapezoid, the paper's (16a)) is given back e² of it in
-// restitution (Stronge). The last step of each phase is cut to land on its end: linear in dp for
-// ż'_I = 0, the quadratic of the work for e² W_c.
+// Units: velocities v, the surface speeds u = R ω, and as the independent variable p = P / M, the
+// nose's normal impulse per unit mass; the equations then hold no mass or radius. Per dp:
+//   - the nose's normal impulse along −(0, c, s);
+//   - friction at the nose f (per unit dp, in its tangent plane: x and y' = (0, −s, c)) against
+//     the nose's slip s_I = (v_x + s u_y − c u_z, −s v_y + c v_z + u_x), |f| <= mu_cushion_mathavan;
+//   - the cloth's normal impulse n_C = s − c f_y' per unit dp: what holds v_z at zero (the ball
+//     stays on the cloth), never pulling; when it would (n_C < 0) the ball leaves the cloth
+//     during the impact and lands back when v_z returns to zero;
+//   - friction at the cloth g against its slip s_C = (v_x − u_y, v_y + u_x), |g| <= mu_table n_C.
+// The paper's equations (12)-(17), written in vector form:
+//   v_x' = f_x + g_x, v_y' = −c − s f_y' + g_y, v_z' = 0 on the cloth (−s + c f_y' off it),
+//   u_x' = 5/2 (f_y' + g_y), u_y' = 5/2 (s f_x − g_x), u_z' = −5/2 c f_x,
+// so the slips move as s_I' = (7/2 f_x + a g_x, (5/2 + s²) f_y' + b g_y + c s) on the cloth,
+// s_C' = (a f_x + 7/2 g_x, −c + b f_y' + 7/2 g_y), with a = 1 − 5s/2 and b = 5/2 − s.
+// A sliding contact's friction opposes its slip at full strength; a stuck contact's friction is
+// whatever keeps its slip zero, solved from the two equations above (both contacts stuck: both
+// slips constant, so a 2x2 system), as long as it stays within its cone.
 //
-// The state lives in locals of one loop and a step costs about 2 square roots and 2 divisions per
-// sliding contact: pool-bench-models measures it.
+// Compression lasts while the nose's normal velocity ż'_I = c v_y + s v_z is positive; the work of
+// the normal force W = ∫ ż'_I dp is integrated with the velocities; restitution then runs until the
+// work given back is e² W_c (Stronge's energetic coefficient, the paper's (16)).
+//
+// Between events the system is smooth (the friction directions turn smoothly while both contacts
+// slide) and is integrated by Dormand & Prince's 5(4) pair with step control (dopri5.c). Events
+// are located on the step's dense output: a sliding contact's slip reaching zero (it sticks or
+// reverses), a stuck contact's friction leaving its cone (it slides), the ball leaving or landing
+// on the cloth, the end of compression and of restitution. At each the modes are decided again
+// (Coulomb's law: stick where the stick friction fits the cone, else slide along the slip's rate).
 #include "cushion_mathavan.h"
 
 #include <math.h>
 
+#include "dopri5.h"
+#ifdef MATHAVAN_DEBUG
+#include <stdio.h>
+#endif
 #include "vec3.h"
 
-enum { VX, VY, VZ, UX, UY, UZ, DIM };
+/// A slip below this fraction of the impact's speed scale counts as zero: a sliding contact there
+/// opposes the direction it was decided (or last seen) to slide in. Rounding of the state's
+/// velocities is about 1e-16 of it.
+#define ZERO_SLIP 1e-10
+/// A step landing a contact on zero slip holds its direction once its slip is below this
+/// fraction of the slip at the step's start.
+#define LAND_HOLD 1e-3
+/// A sliding contact's slip turning faster than this many times over a step: the step follows
+/// its slow manifold (contact_forces).
+#define QUASI 3.0
+/// ... and whose friction that would hold it is within this many times its cone (the slow
+/// manifold is then about where that friction is cut to the cone).
+#define MARGINAL 1.5
+/// A contact sliding from zero slip is consistent when its slip's rate along its direction is
+/// above minus this fraction of its friction's own rate, 7/2 mu: at a stick's marginal end it grows
+/// from rest, at rate 0 (the end is located to about this).
+#define MARGINAL_RATE 1e-5
+/// The first step, times tolerance^(1/5) and the frictionless impact's impulse.
+#define FIRST_STEP 2.0
+/// Step tries before the impact is given up as jammed (Petit's law takes it; none of the random
+/// impacts of test_model_fidelity comes near: see MATHAVAN_STEPS_MAX there).
+#define MAX_TRIES 2000
+/// Compression given up as jammed (friction stopping ż'_I's decrease) beyond this many times the
+/// normal impulse of the frictionless impact.
+#define JAM_IMPULSES 8.0
+
+enum { VX, VY, VZ, UX, UY, UZ, WORK, DIM }; // the state: v, u = R ω, W
+enum { NOSE, CLOTH };
 
 typedef struct law {
 	double c, s, mu_i, mu_c;
 } law;
 
-// The state and the contacts' slips at the start of the previous step (for the extrapolation).
+// How each contact behaves until the next event, and the directions sliding contacts oppose
+// while their slip is (about) zero or beyond a zero crossing inside a step.
+typedef struct modes {
+	bool nose_stuck, cloth_stuck, airborne;
+	bool nose_quasi, cloth_quasi; // this step: a sliding contact's slip too small for the step
+	double nose_small, cloth_small; // slips this small slide along the contacts' directions
+	double nose_dir[2], cloth_dir[2];
+} modes;
+
 typedef struct impact {
-	double y[DIM];
-	double prev_i[2], prev_c[2];
-	int has_prev;
-	unsigned stuck; // bit 0: the nose stuck in the last step, bit 1: the cloth
+	law k;
+	modes m;
+	double zero;  // ZERO_SLIP times the speed scale
+	unsigned frozen; // bit i: sliding contact i follows its direction even at zero slip
 } impact;
 
-static double approach(const law *k, const double *y) { return k->c * y[VY] + k->s * y[VZ]; }
+typedef struct forces {
+	double f[2], g[2], nc; // per unit dp: friction at the nose (x, y'), at the cloth (x, y); n_C
+	bool ok;               // the stuck contacts' friction could be solved
+} forces;
 
-// Coulomb friction on a contact's slip over a step: the impulse that cancels the slip if within
-// `bound` (sticking: returns 1), else `bound` against `dir` (sliding along the slip at the middle
-// of the step), or against the slip itself when dir is zero. Output f.
-static unsigned friction(const double slip[2], const double dir[2], double bound, double f[2]) {
-	const double s2 = slip[0] * slip[0] + slip[1] * slip[1];
-	if (s2 <= (3.5 * bound) * (3.5 * bound)) {
-		f[0] = -slip[0] / 3.5;
-		f[1] = -slip[1] / 3.5;
-		return 1u;
-	}
-	const double d2 = dir[0] * dir[0] + dir[1] * dir[1];
-	const double *along = d2 > 0.0 ? dir : slip;
-	const double g = bound / sqrt(d2 > 0.0 ? d2 : s2);
-	f[0] = -g * along[0];
-	f[1] = -g * along[1];
-	return 0u;
+static void nose_slip(const law *k, const double *y, double out[2]) {
+	out[0] = y[VX] + k->s * y[UY] - k->c * y[UZ];
+	out[1] = -k->s * y[VY] + k->c * y[VZ] + y[UX];
+}
+static void cloth_slip(const double *y, double out[2]) {
+	out[0] = y[VX] - y[UY];
+	out[1] = y[VY] + y[UX];
+}
+static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
+static double sq(double x) { return x * x; }
+
+// x^a for the step control (x > 0), to about 1e-3 relative: 2^(a log2 x) from the mantissa and
+// the exponent, by polynomials.
+static double power(double x, double a) {
+	int ex;
+	const double m = frexp(x, &ex), t = m - 0.75; // m in [0.5, 1)
+	const double l = ex + (-0.415037 + t * (1.9236 + t * (-1.2825 + t * 1.1398)));
+	const double y = a * l, n = floor(y), f = y - n;
+	return ldexp(1.0 + f * (0.6931472 + f * (0.2402265 + f * (0.0555041 + f * 0.0096181))), (int)n);
 }
 
-// One step of impulse h from `from` into `to`. Returns which contacts stuck.
-static unsigned advance(const law *k, const impact *from, impact *to, double h) {
-	const double c = k->c, s = k->s;
-	const double *y0 = from->y;
-	double now_i[2] = {y0[VX] + s * y0[UY] - c * y0[UZ], -s * y0[VY] + c * y0[VZ] + y0[UX]};
-	double now_c[2] = {y0[VX] - y0[UY], y0[VY] + y0[UX]};
-	double mid_i[2] = {0.0, 0.0}, mid_c[2] = {0.0, 0.0}, f[2];
-	if (from->has_prev)
-		for (int j = 0; j < 2; ++j) {
-			mid_i[j] = 1.5 * now_i[j] - 0.5 * from->prev_i[j];
-			mid_c[j] = 1.5 * now_c[j] - 0.5 * from->prev_c[j];
-		}
-	double *y = to->y;
-	for (int j = 0; j < DIM; ++j)
-		y[j] = y0[j];
-	// 1. the normal impulse at the nose (along r_I: no torque, the nose's slip unchanged)
-	y[VY] -= c * h;
-	y[VZ] -= s * h;
-	// 2. friction at the nose
-	unsigned stuck = friction(now_i, mid_i, k->mu_i * h, f);
-	y[VX] += f[0];
-	y[VY] -= s * f[1];
-	y[VZ] += c * f[1];
-	y[UX] += 2.5 * f[1];
-	y[UY] += 2.5 * s * f[0];
-	y[UZ] -= 2.5 * c * f[0];
-	// 3. the cloth holds the ball on it
-	const double n_c = y[VZ] < 0.0 ? -y[VZ] : 0.0;
-	y[VZ] += n_c;
-	// 4. friction at the cloth
-	const double slip_c[2] = {y[VX] - y[UY], y[VY] + y[UX]};
-	stuck |= friction(slip_c, mid_c, k->mu_c * n_c, f) << 1;
-	y[VX] += f[0];
-	y[VY] += f[1];
-	y[UX] += 2.5 * f[1];
-	y[UY] -= 2.5 * f[0];
-	for (int j = 0; j < 2; ++j) {
-		to->prev_i[j] = now_i[j];
-		to->prev_c[j] = now_c[j];
+static void unit_or_keep(const double v[2], double out[2]) {
+	const double n = sqrt(dot2(v, v));
+	if (n > 0.0) {
+		out[0] = v[0] / n;
+		out[1] = v[1] / n;
 	}
-	to->has_prev = 1;
-	to->stuck = stuck;
-	return stuck;
 }
 
-// A step of impulse h; one where a contact changes between sticking and sliding (against the
-// step before) is taken again in POOL_MATHAVAN_SUBSTEPS substeps.
-static void step(const law *k, const impact *from, impact *to, double h) {
-	const unsigned stuck = advance(k, from, to, h);
-	if (!from->has_prev || stuck == from->stuck)
+// The direction a sliding contact's friction opposes: its slip's, but `ref` while the slip is
+// about zero, or once it has crossed zero inside a step (until the event puts the step there).
+static void slide_direction(const double slip[2], const double ref[2], double zero, double out[2]) {
+	const double s2 = dot2(slip, slip);
+	if (s2 <= zero * zero) {
+		out[0] = ref[0];
+		out[1] = ref[1];
 		return;
-	impact sub = *from;
-	for (int i = 0; i < POOL_MATHAVAN_SUBSTEPS; ++i) {
-		advance(k, &sub, to, h / POOL_MATHAVAN_SUBSTEPS);
-		sub = *to;
+	}
+	const double inv = 1.0 / sqrt(s2);
+	out[0] = slip[0] * inv;
+	out[1] = slip[1] * inv;
+}
+
+// The forces per unit dp with the contacts stuck or sliding along dn (nose) and dc (cloth).
+static void forces_for(const impact *im, bool nose_stuck, bool cloth_stuck, const double dn[2], const double dc[2],
+                       forces *o) {
+	const law *k = &im->k;
+	const double c = k->c, s = k->s, a = 1.0 - 2.5 * s, b = 2.5 - s;
+	o->f[0] = o->f[1] = o->g[0] = o->g[1] = o->nc = 0.0;
+	o->ok = true;
+	if (!nose_stuck) {
+		o->f[0] = -k->mu_i * dn[0];
+		o->f[1] = -k->mu_i * dn[1];
+	}
+	if (im->m.airborne) // the nose alone: a stuck nose's slip is moved by nothing, so needs no friction
+		return;
+	if (nose_stuck && cloth_stuck) { // both slips constant: f_x = g_x = 0 and a 2x2 system
+		const double det = 3.5 * (2.5 + s * s) - b * b;
+		if (!(det > 0.0)) { // a nose at the ball's bottom: no solution
+			o->ok = false;
+			return;
+		}
+		o->f[1] = -c * (3.5 * s + b) / det;
+		o->g[1] = c * (2.5 + s * s + b * s) / det;
+		o->nc = s - c * o->f[1];
+		return;
+	}
+	if (nose_stuck) { // the cloth slides along dc; its friction depends on f_y' through n_C
+		const double den = 2.5 + s * s + b * k->mu_c * c * dc[1];
+		if (!(den > 0.0)) { // friction beyond any cloth: no stick solution
+			o->ok = false;
+			return;
+		}
+		o->f[1] = s * (b * k->mu_c * dc[1] - c) / den;
+		o->nc = s - c * o->f[1];
+		o->g[0] = -k->mu_c * o->nc * dc[0];
+		o->g[1] = -k->mu_c * o->nc * dc[1];
+		o->f[0] = -a * o->g[0] / 3.5;
+		return;
+	}
+	o->nc = s - c * o->f[1];
+	if (cloth_stuck) {
+		o->g[0] = -a * o->f[0] / 3.5;
+		o->g[1] = (c - b * o->f[1]) / 3.5;
+	} else {
+		o->g[0] = -k->mu_c * o->nc * dc[0];
+		o->g[1] = -k->mu_c * o->nc * dc[1];
 	}
 }
+
+// The forces at y in the current modes. A sliding contact whose slip is within `zero` is held:
+// its friction is the one that would keep it stuck, cut to its cone's edge when beyond it (and
+// then it slides along that friction). This is Coulomb's law where the slip's own direction is
+// lost in rounding: where a contact has just started to slide (its slip growing from zero, at
+// first along the direction its stick friction leaves the cone) and where it has just come to rest.
+static void contact_forces(const impact *im, const double *y, forces *o) {
+	const law *k = &im->k;
+	const modes *m = &im->m;
+	double slip[2], dn[2] = {0.0, 0.0}, dc[2] = {0.0, 0.0};
+	if (!im->frozen && !m->nose_stuck && !m->cloth_stuck && !m->airborne && !m->nose_quasi && !m->cloth_quasi) {
+		// Both sliding on the cloth (most of an impact): each friction against its slip.
+		const double si[2] = {y[VX] + k->s * y[UY] - k->c * y[UZ], -k->s * y[VY] + k->c * y[VZ] + y[UX]};
+		const double sc[2] = {y[VX] - y[UY], y[VY] + y[UX]};
+		const double ni = dot2(si, si), nc = dot2(sc, sc), z2 = im->zero * im->zero;
+		if (ni > z2 && nc > z2) {
+			const double gi = k->mu_i / sqrt(ni);
+			o->f[0] = -gi * si[0];
+			o->f[1] = -gi * si[1];
+			o->nc = k->s - k->c * o->f[1];
+			const double gc = k->mu_c * o->nc / sqrt(nc);
+			o->g[0] = -gc * sc[0];
+			o->g[1] = -gc * sc[1];
+			o->ok = true;
+			return;
+		}
+	}
+	bool nose_held = m->nose_stuck, cloth_held = m->cloth_stuck || m->airborne;
+	if (!nose_held) {
+		nose_slip(k, y, slip);
+		nose_held = !(im->frozen & 1u) && (m->nose_quasi || dot2(slip, slip) <= im->zero * im->zero);
+		if (im->frozen & 1u)
+			dn[0] = m->nose_dir[0], dn[1] = m->nose_dir[1];
+		else
+			slide_direction(slip, m->nose_dir, m->nose_small, dn);
+	}
+	if (!cloth_held) {
+		cloth_slip(y, slip);
+		cloth_held = !(im->frozen & 2u) && (m->cloth_quasi || dot2(slip, slip) <= im->zero * im->zero);
+		if (im->frozen & 2u)
+			dc[0] = m->cloth_dir[0], dc[1] = m->cloth_dir[1];
+		else
+			slide_direction(slip, m->cloth_dir, m->cloth_small, dc);
+	}
+	forces_for(im, nose_held, cloth_held, dn, dc, o);
+	if (nose_held && !m->nose_stuck && (!o->ok || dot2(o->f, o->f) > k->mu_i * k->mu_i)) {
+		if (o->ok) {
+			dn[0] = -o->f[0], dn[1] = -o->f[1];
+			unit_or_keep(dn, dn);
+		}
+		nose_held = false;
+		forces_for(im, nose_held, cloth_held, dn, dc, o);
+	}
+	if (cloth_held && !m->cloth_stuck && !m->airborne &&
+	    (!o->ok || dot2(o->g, o->g) > k->mu_c * k->mu_c * o->nc * o->nc)) {
+		if (o->ok) {
+			dc[0] = -o->g[0], dc[1] = -o->g[1];
+			unit_or_keep(dc, dc);
+		}
+		forces_for(im, nose_held, false, dn, dc, o);
+	}
+}
+
+static void derivative_of(const impact *im, const double *y, const forces *o, double *dy) {
+	const law *k = &im->k;
+	dy[VX] = o->f[0] + o->g[0];
+	dy[VY] = -k->c - k->s * o->f[1] + o->g[1];
+	dy[VZ] = im->m.airborne ? -k->s + k->c * o->f[1] : 0.0;
+	dy[UX] = 2.5 * (o->f[1] + o->g[1]);
+	dy[UY] = 2.5 * (k->s * o->f[0] - o->g[0]);
+	dy[UZ] = -2.5 * k->c * o->f[0];
+	dy[WORK] = k->c * y[VY] + k->s * y[VZ];
+}
+
+#ifdef MATHAVAN_DEBUG
+static int debug_stages;
+#endif
+#ifdef MATHAVAN_COUNT
+long pool_mathavan_evals, pool_mathavan_event_count[16];
+#endif
+static void derivative(const void *ctx, const double *y, double *dy) {
+	const impact *im = ctx;
+#ifdef MATHAVAN_COUNT
+	++pool_mathavan_evals;
+#endif
+	forces o;
+	contact_forces(im, y, &o);
+	derivative_of(im, y, &o, dy);
+#ifdef MATHAVAN_DEBUG
+	if (debug_stages) {
+		double a[2];
+		nose_slip(&im->k, y, a);
+		fprintf(stderr, "        stage slip I (%.4g %.4g) f (%.4g %.4g) ref (%.3g %.3g)\n", a[0], a[1], o.f[0], o.f[1], im->m.nose_dir[0], im->m.nose_dir[1]);
+	}
+#endif
+}
+
+// ---------------------------------------------------------------- deciding the modes
+
+// Coulomb's law where a contact's slip is zero: it sticks if the friction that keeps it so fits
+// its cone, else it slides along the direction its slip then grows in (for the cloth, the slip's
+// rate without its own friction; for the nose on the cloth, whose own friction also moves the
+// cloth's normal force, the fixed point of that, found by iteration).
+typedef struct choice {
+	bool zero[2];   // the contact's slip is zero
+	bool slide[2];  // the contact was seen to leave stick (or reverse): it may not stick now
+	bool airborne;  // the ball must leave the cloth
+} choice;
+
+static void slip_rates(const impact *im, const double *y, double nose[2], double cloth[2]) {
+	forces o;
+	double dy[DIM];
+	contact_forces(im, y, &o);
+	derivative_of(im, y, &o, dy);
+	nose_slip(&im->k, dy, nose); // the slips are linear in the state
+	cloth_slip(dy, cloth);
+}
+
+
+// The direction a contact starts to slide in from zero slip: d with slip' (d) = lambda d,
+// lambda > 0. Its slip's rate is affine in its own friction, rate(d) = a + B d (a: with no friction
+// there; B's columns from d along the axes), so d = (lambda I − B)^−1 a with lambda found where
+// that has unit length (it shrinks as lambda grows; at lambda = 0 it is longer than 1 exactly when
+// the contact cannot stick). For the cloth B is −7/2 mu_table n_C I and d is a's direction; the
+// nose's B is not isotropic on the cloth (its friction moves n_C). Sets the contact's direction.
+static void start_direction(impact *im, const double *y, int i) {
+	double *dir = i == NOSE ? im->m.nose_dir : im->m.cloth_dir;
+	double rate[2][2], a[2], B[2][2];
+	im->frozen = 3u;
+	dir[0] = dir[1] = 0.0;
+	slip_rates(im, y, rate[NOSE], rate[CLOTH]);
+	a[0] = rate[i][0], a[1] = rate[i][1];
+	for (int j = 0; j < 2; ++j) {
+		dir[0] = j == 0, dir[1] = j == 1;
+		slip_rates(im, y, rate[NOSE], rate[CLOTH]);
+		B[0][j] = rate[i][0] - a[0];
+		B[1][j] = rate[i][1] - a[1];
+	}
+	double lo = 0.0, hi = sqrt(dot2(a, a)) + fabs(B[0][0]) + fabs(B[0][1]) + fabs(B[1][0]) + fabs(B[1][1]);
+	double d[2] = {a[0], a[1]};
+	for (int it = 0; it < 100 && hi > lo; ++it) {
+		const double lambda = 0.5 * (lo + hi);
+		const double m00 = lambda - B[0][0], m01 = -B[0][1], m10 = -B[1][0], m11 = lambda - B[1][1];
+		const double det = m00 * m11 - m01 * m10;
+		if (!(det != 0.0)) {
+			lo = lambda;
+			continue;
+		}
+		d[0] = (m11 * a[0] - m01 * a[1]) / det;
+		d[1] = (m00 * a[1] - m10 * a[0]) / det;
+		if (dot2(d, d) > 1.0)
+			lo = lambda;
+		else
+			hi = lambda;
+		if (lambda == lo && lambda == hi)
+			break;
+	}
+	im->frozen = 0u;
+	dir[0] = dir[1] = 0.0;
+	unit_or_keep(d, dir);
+	if (!(dot2(dir, dir) > 0.0))
+		dir[0] = 1.0; // nothing moves the slip: any direction (it is not used before it grows)
+}
+
+// Sets the directions of the contacts sliding from zero slip (from_zero[i]); true when each
+// one's slip then grows along its direction. Both from zero: each in turn, twice.
+static bool directions_from_zero(impact *im, const double *y, const bool from_zero[2]) {
+	const int rounds = from_zero[NOSE] && from_zero[CLOTH] ? 3 : 1;
+	for (int r = 0; r < rounds; ++r)
+		for (int i = 0; i < 2; ++i)
+			if (from_zero[i])
+				start_direction(im, y, i);
+	double rate[2][2];
+	slip_rates(im, y, rate[NOSE], rate[CLOTH]);
+	const double *dir[2] = {im->m.nose_dir, im->m.cloth_dir};
+	for (int i = 0; i < 2; ++i) // at a stick's marginal end the slip grows from rest: rate ~ 0
+		if (from_zero[i] && !(dot2(rate[i], dir[i]) > -MARGINAL_RATE * 3.5 * (i == NOSE ? im->k.mu_i : im->k.mu_c)))
+			return false;
+	return true;
+}
+
+// Tries the modes (stick where allowed first, the cloth before the air) and keeps the first that
+// is consistent. None (friction beyond any cloth, where Coulomb's law has no solution): all
+// sliding, on the cloth unless it would pull.
+static void decide_modes(impact *im, const double *y, const choice *ch) {
+	const law *k = &im->k;
+	modes *m = &im->m;
+	double slip[2][2];
+	nose_slip(k, y, slip[NOSE]);
+	cloth_slip(y, slip[CLOTH]);
+	int fallback_air = -1;
+	bool cloth_pulls = false; // on the cloth, all sliding, its normal force would be negative
+	for (int air = ch->airborne || y[VZ] > 0.0; air < 2 && (air == 0 || ch->airborne || y[VZ] > 0.0 || cloth_pulls);
+	     ++air) {
+		for (int nose_stick = ch->zero[NOSE] && !ch->slide[NOSE]; nose_stick >= 0; --nose_stick)
+			for (int cloth_stick = !air && ch->zero[CLOTH] && !ch->slide[CLOTH]; cloth_stick >= 0; --cloth_stick) {
+				m->airborne = air;
+				m->nose_stuck = nose_stick;
+				m->cloth_stuck = cloth_stick;
+				const bool from_zero[2] = {!nose_stick && ch->zero[NOSE], !air && !cloth_stick && ch->zero[CLOTH]};
+				for (int i = 0; i < 2; ++i)
+					if (!from_zero[i])
+						unit_or_keep(slip[i], i == NOSE ? m->nose_dir : m->cloth_dir);
+				bool ok = directions_from_zero(im, y, from_zero);
+				forces o;
+				contact_forces(im, y, &o);
+				if (!nose_stick && !cloth_stick && fallback_air < 0 && (air || o.nc >= 0.0))
+					fallback_air = air;
+				if (!air && !nose_stick && !cloth_stick)
+					cloth_pulls = !(o.nc >= 0.0);
+				ok = ok && o.ok && (air || o.nc >= 0.0);
+				if (nose_stick)
+					ok = ok && dot2(o.f, o.f) <= k->mu_i * k->mu_i;
+				if (cloth_stick)
+					ok = ok && dot2(o.g, o.g) <= k->mu_c * k->mu_c * o.nc * o.nc;
+#ifdef MATHAVAN_DEBUG
+				{
+					double rn[2], rc[2];
+					slip_rates(im, y, rn, rc);
+					fprintf(stderr, "    decide air %d ns %d cs %d: fromzero %d %d dirs (%.4g %.4g) (%.4g %.4g) rates (%.4g %.4g) (%.4g %.4g) f (%.4g %.4g) g (%.4g %.4g) nc %.4g ok %d vz %g\n", air, nose_stick, cloth_stick, from_zero[0], from_zero[1], m->nose_dir[0], m->nose_dir[1], m->cloth_dir[0], m->cloth_dir[1], rn[0], rn[1], rc[0], rc[1], o.f[0], o.f[1], o.g[0], o.g[1], o.nc, ok, y[VZ]);
+				}
+#endif
+				if (ok)
+					return;
+			}
+	}
+	m->airborne = fallback_air == 1 || (fallback_air < 0 && cloth_pulls);
+	m->nose_stuck = m->cloth_stuck = false;
+	const bool from_zero[2] = {ch->zero[NOSE], !m->airborne && ch->zero[CLOTH]};
+	for (int i = 0; i < 2; ++i)
+		if (!from_zero[i])
+			unit_or_keep(slip[i], i == NOSE ? m->nose_dir : m->cloth_dir);
+	directions_from_zero(im, y, from_zero);
+}
+
+// ---------------------------------------------------------------- events
+
+typedef enum event {
+	EV_NOSE_SLIP_ZERO,
+	EV_CLOTH_SLIP_ZERO,
+	EV_NOSE_SLIPS,  // a stuck nose's friction leaves its cone
+	EV_CLOTH_SLIPS, // a stuck cloth contact's friction leaves its cone
+	EV_LIFT_OFF,    // the cloth would have to pull
+	EV_LANDING,     // v_z back to zero
+	EV_END,         // of compression (ż'_I = 0) or of restitution (W = W_end)
+	EV_COUNT
+} event;
+
+typedef struct phase {
+	bool restitution;
+	double work_end; // W at which restitution ends
+} phase;
+
+// The event's function: positive before it, zero at it.
+static double event_value(const impact *im, const phase *ph, event ev, const double *y) {
+	const law *k = &im->k;
+	double slip[2];
+	forces o;
+	switch (ev) {
+	case EV_NOSE_SLIP_ZERO:
+		nose_slip(k, y, slip);
+		return dot2(slip, im->m.nose_dir);
+	case EV_CLOTH_SLIP_ZERO:
+		cloth_slip(y, slip);
+		return dot2(slip, im->m.cloth_dir);
+	case EV_NOSE_SLIPS:
+		contact_forces(im, y, &o);
+		return o.ok ? k->mu_i * k->mu_i - dot2(o.f, o.f) : -1.0;
+	case EV_CLOTH_SLIPS:
+		contact_forces(im, y, &o);
+		return o.ok ? k->mu_c * k->mu_c * o.nc * o.nc - dot2(o.g, o.g) : -1.0;
+	case EV_LIFT_OFF:
+		contact_forces(im, y, &o);
+		return o.ok ? o.nc : -1.0;
+	case EV_LANDING:
+		return y[VZ];
+	case EV_END:
+		return ph->restitution ? y[WORK] - ph->work_end : k->c * y[VY] + k->s * y[VZ];
+	default:
+		return 1.0;
+	}
+}
+
+static bool event_active(const impact *im, event ev) {
+	const modes *m = &im->m;
+	switch (ev) {
+	case EV_NOSE_SLIP_ZERO: // reached in q (approach_rate), not located
+	case EV_CLOTH_SLIP_ZERO:
+		return false;
+	case EV_NOSE_SLIPS:
+		return m->nose_stuck && !m->airborne;
+	case EV_CLOTH_SLIPS:
+		return m->cloth_stuck && !m->airborne;
+	case EV_LIFT_OFF: // n_C = s − c f_y' >= s − c mu: never below zero when that is positive
+		return !m->airborne && im->k.s <= im->k.c * im->k.mu_i;
+	case EV_LANDING:
+		return m->airborne;
+	default:
+		return true;
+	}
+}
+
+// The root of the event's function on the step's dense output, between theta 0 (value g0 > 0)
+// and 1 (g1 <= 0): the Illinois variant of regula falsi, to the last bits of theta.
+static double locate(const impact *im, const phase *ph, event ev, const pool_dopri5_step *st, double g0, double g1) {
+	double lo = 0.0, hi = 1.0, glo = g0, ghi = g1, y[DIM];
+	const double small = 1e-14 * fmax(g0, -g1);
+	int side = 0;
+	for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
+		double t = (lo * ghi - hi * glo) / (ghi - glo);
+		if (!(t > lo && t < hi))
+			t = 0.5 * (lo + hi);
+		double g;
+		if (ev == EV_END) { // only what the end's function reads
+			if (ph->restitution) {
+				g = pool_dopri5_dense_one(st, t, WORK) - ph->work_end;
+			} else {
+				g = im->k.c * pool_dopri5_dense_one(st, t, VY) + im->k.s * pool_dopri5_dense_one(st, t, VZ);
+			}
+		} else {
+			pool_dopri5_dense(st, t, y);
+			g = event_value(im, ph, ev, y);
+		}
+		if (fabs(g) <= small)
+			return t;
+		if (g > 0.0) {
+			lo = t, glo = g;
+			if (side == -1)
+				ghi *= 0.5;
+			side = -1;
+		} else {
+			hi = t, ghi = g;
+			if (g == 0.0)
+				break;
+			if (side == 1)
+				glo *= 0.5;
+			side = 1;
+		}
+	}
+	return hi; // the event has happened there
+}
+
+// Applies a tangential impulse J at the nose (x, y') and the cloth's response to it in the
+// current modes: its normal impulse holding v_z (−c J_y'), and its friction (sliding: that normal
+// impulse's share along the slip; stuck: what keeps its slip).
+static void nose_impulse(const impact *im, const double J[2], double *y) {
+	const law *k = &im->k;
+	const double c = k->c, s = k->s;
+	y[VX] += J[0];
+	y[VY] -= s * J[1];
+	y[VZ] += c * J[1];
+	y[UX] += 2.5 * J[1];
+	y[UY] += 2.5 * s * J[0];
+	y[UZ] -= 2.5 * c * J[0];
+	if (im->m.airborne)
+		return;
+	y[VZ] = 0.0;
+	double G[2];
+	if (im->m.cloth_stuck) {
+		G[0] = -(1.0 - 2.5 * s) * J[0] / 3.5;
+		G[1] = -(2.5 - s) * J[1] / 3.5;
+	} else {
+		G[0] = k->mu_c * c * J[1] * im->m.cloth_dir[0];
+		G[1] = k->mu_c * c * J[1] * im->m.cloth_dir[1];
+	}
+	y[VX] += G[0];
+	y[VY] += G[1];
+	y[UX] += 2.5 * G[1];
+	y[UY] -= 2.5 * G[0];
+}
+
+// Applies a tangential impulse G at the cloth and a stuck nose's response (what keeps its slip).
+static void cloth_impulse(const impact *im, const double G[2], double *y) {
+	const law *k = &im->k;
+	const double s = k->s;
+	y[VX] += G[0];
+	y[VY] += G[1];
+	y[UX] += 2.5 * G[1];
+	y[UY] -= 2.5 * G[0];
+	if (im->m.nose_stuck) {
+		const double J[2] = {-(1.0 - 2.5 * s) * G[0] / 3.5, -(2.5 - s) * G[1] / (2.5 + s * s)};
+		y[VX] += J[0];
+		y[VY] -= s * J[1];
+		y[UX] += 2.5 * J[1];
+		y[UY] += 2.5 * s * J[0];
+		y[UZ] -= 2.5 * k->c * J[0];
+	}
+}
+
+// Takes a contact's slip to exactly zero by the impulse there that does so with the other
+// contact's response in the current modes. Where the slip is a step's small miss of its zero
+// (the last of an approach, or the dense output's error at a located crossing), that impulse is
+// to first order the friction the integration got wrong: the correction keeps the step's error
+// out of the other contact and the velocities.
+static void cancel_slip(const impact *im, int contact, double *y) {
+	const law *k = &im->k;
+	const double c = k->c, s = k->s, a = 1.0 - 2.5 * s, b = 2.5 - s;
+	double r[2], J[2];
+	if (contact == NOSE) {
+		nose_slip(k, y, r);
+		if (im->m.airborne) {
+			J[0] = -r[0] / 3.5;
+			J[1] = -r[1] / 3.5;
+		} else if (im->m.cloth_stuck) {
+			J[0] = -r[0] / (3.5 - a * a / 3.5);
+			J[1] = -r[1] / (2.5 + s * s - b * b / 3.5);
+		} else {
+			const double *d = im->m.cloth_dir, m = k->mu_c * c;
+			const double den = 2.5 + s * s + b * m * d[1];
+			J[1] = den > 0.0 ? -r[1] / den : 0.0;
+			J[0] = (-r[0] - a * m * d[0] * J[1]) / 3.5;
+		}
+		nose_impulse(im, J, y);
+	} else {
+		cloth_slip(y, r);
+		if (im->m.nose_stuck && !im->m.airborne) {
+			J[0] = -r[0] / (3.5 - a * a / 3.5);
+			J[1] = -r[1] / (3.5 - b * b / (2.5 + s * s));
+		} else {
+			J[0] = -r[0] / 3.5;
+			J[1] = -r[1] / 3.5;
+		}
+		cloth_impulse(im, J, y);
+	}
+}
+
+// ---------------------------------------------------------------- the impact
 
 static pool_vec3 to_world(pool_vec3 ex, pool_vec3 ey, pool_vec3 ez, double x, double y, double z) {
 	return pool_v3_add(pool_v3_add(pool_v3_scale(ex, x), pool_v3_scale(ey, y)), pool_v3_scale(ez, z));
 }
 
-pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_params *p, pool_vec3 n, int steps) {
+// Modes at the start, or after an event at y (`ev` happened; EV_COUNT: the start, or a slip
+// found about zero between steps). A contact whose slip counts as zero has it cancelled first.
+static void modes_after(impact *im, double *y, event ev) {
+	double slip[2];
+	choice ch = {{false, false}, {false, false}, ev == EV_LIFT_OFF};
+	if (ev == EV_LIFT_OFF || ev == EV_LANDING)
+		y[VZ] = 0.0;
+	nose_slip(&im->k, y, slip);
+	ch.zero[NOSE] = dot2(slip, slip) <= im->zero * im->zero || ev == EV_NOSE_SLIP_ZERO || ev == EV_NOSE_SLIPS;
+	if (ch.zero[NOSE])
+		cancel_slip(im, NOSE, y);
+	cloth_slip(y, slip);
+	ch.zero[CLOTH] = dot2(slip, slip) <= im->zero * im->zero || ev == EV_CLOTH_SLIP_ZERO || ev == EV_CLOTH_SLIPS;
+	if (ch.zero[CLOTH] && !im->m.airborne)
+		cancel_slip(im, CLOTH, y);
+	ch.slide[NOSE] = ev == EV_NOSE_SLIPS;
+	ch.slide[CLOTH] = ev == EV_CLOTH_SLIPS;
+	decide_modes(im, y, &ch);
+}
+
+// The impulse after which a sliding contact's slip reaches zero at its present rate (its slip
+// `slip`, rate `rate`); INFINITY when it is not closing.
+static double closing_distance(const double slip[2], const double rate[2], double zero) {
+	const double s2 = dot2(slip, slip), closing = -dot2(slip, rate);
+	return s2 > zero * zero && closing > 0.0 ? s2 / closing : INFINITY;
+}
+
+// The slip of contact i at y, and its rate in p from the slope dy (in p).
+static void slip_and_rate(const impact *im, int i, const double *y, const double *dy, double sl[2], double rate[2]) {
+	if (i == NOSE) {
+		nose_slip(&im->k, y, sl);
+		nose_slip(&im->k, dy, rate);
+	} else {
+		cloth_slip(y, sl);
+		cloth_slip(dy, rate);
+	}
+}
+
+static bool sliding(const modes *m, int i) { return i == NOSE ? !m->nose_stuck : !m->airborne && !m->cloth_stuck; }
+
+// The landing of sliding contact i on zero slip (its slip s, closing): with every sliding
+// direction held, the system's slope is constant, and its slip's rate is affine in i's direction
+// d, rate(d) = a + B d; the d for which that rate points straight back at zero, a + B d = −lambda
+// s/|s| with |d| = 1, lambda > 0 (a quadratic in lambda), lands the slip on zero after the
+// impulse |s| / lambda. That held direction is the mean of the turning one over the rest of the
+// approach, to the second order in its turn. Sets i's direction to d and returns the impulse
+// (INFINITY: none), the slope in k.
+static double landing(impact *im, const double *y, int i, const double s[2], double *k) {
+	double *dir = i == NOSE ? im->m.nose_dir : im->m.cloth_dir;
+	double sl[2], a[2], B[2][2];
+	im->frozen = 3u;
+	dir[0] = dir[1] = 0.0;
+	derivative(im, y, k);
+	slip_and_rate(im, i, y, k, sl, a);
+	for (int j = 0; j < 2; ++j) {
+		double r[2];
+		dir[0] = j == 0, dir[1] = j == 1;
+		derivative(im, y, k);
+		slip_and_rate(im, i, y, k, sl, r);
+		B[0][j] = r[0] - a[0];
+		B[1][j] = r[1] - a[1];
+	}
+	const double det = B[0][0] * B[1][1] - B[0][1] * B[1][0], n = sqrt(dot2(s, s));
+	const double u[2] = {(B[1][1] * a[0] - B[0][1] * a[1]) / det, (B[0][0] * a[1] - B[1][0] * a[0]) / det};
+	const double w[2] = {(B[1][1] * s[0] - B[0][1] * s[1]) / (det * n), (B[0][0] * s[1] - B[1][0] * s[0]) / (det * n)};
+	const double ww = dot2(w, w), uw = dot2(u, w), disc = uw * uw - ww * (dot2(u, u) - 1.0);
+	const double lambda = ww > 0.0 && disc >= 0.0 ? (-uw + sqrt(disc)) / ww : -1.0;
+	dir[0] = -(u[0] + lambda * w[0]);
+	dir[1] = -(u[1] + lambda * w[1]);
+	derivative(im, y, k);
+	im->frozen = 0u;
+	return det != 0.0 && lambda > 0.0 && dot2(dir, s) > 0.0 ? n / lambda : INFINITY;
+}
+
+pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_params *p, pool_vec3 n,
+                                            double tolerance) {
 	const pool_vec3 nh = pool_v3_xy(n);
 	const double c = pool_v3_len(nh);
-	if (!(c > 0.0) || steps < 1)
+	if (!(c > 0.0) || !(tolerance > 0.0))
 		return POOL_MATHAVAN_SEPARATING; // a normal straight down: not a rail impact
 	const pool_vec3 ey = pool_v3_scale(nh, -1.0 / c), ez = pool_v3(0.0, 0.0, 1.0);
 	const pool_vec3 ex = pool_v3_cross(ey, ez);
 	const double R = p->ball_radius;
-	const law k = {c, -n.z, p->mu_cushion_mathavan, p->mu_table};
-	impact it = {{pool_v3_dot(st->vel, ex), pool_v3_dot(st->vel, ey), pool_v3_dot(st->vel, ez),
-	              R * pool_v3_dot(st->omega, ex), R * pool_v3_dot(st->omega, ey), R * pool_v3_dot(st->omega, ez)},
-	             {0.0, 0.0},
-	             {0.0, 0.0},
-	             0,
-	             0u};
-	const double z0 = approach(&k, it.y);
+	double y[DIM] = {pool_v3_dot(st->vel, ex),         pool_v3_dot(st->vel, ey),         pool_v3_dot(st->vel, ez),
+	                 R * pool_v3_dot(st->omega, ex), R * pool_v3_dot(st->omega, ey), R * pool_v3_dot(st->omega, ez),
+	                 0.0};
+	impact im = {{c, -n.z, p->mu_cushion_mathavan, p->mu_table}, {0}, 0.0, 0};
+	const double z0 = im.k.c * y[VY] + im.k.s * y[VZ];
 	if (!(z0 > 0.0))
 		return POOL_MATHAVAN_SEPARATING;
-	const double e = p->e_cushion_mathavan;
-	// The impulse of a frictionless impact, (1 + e) ż'_0 / cos² θ (the cloth takes the vertical
-	// part), split into `steps`; friction changes the real total by some per cent.
-	const double dp = (1.0 + e) * z0 / (c * c) / steps;
-	const int max_steps = 8 * steps; // beyond: jammed (friction stopping the approach's decrease)
-	double work = 0.0;               // ∫ ż'_I dp of the compression
-	impact next;
-	for (int i = 0; i == 0 || approach(&k, it.y) > 0.0; ++i) {
-		if (i == max_steps)
+	if (y[VZ] < 0.0)
+		y[VZ] = 0.0; // a ball on the cloth does not move into it
+	double scale = 0.0; // the speed scale: errors and zero slips are measured against it
+	for (int i = 0; i < UZ + 1; ++i)
+		scale = fmax(scale, fabs(y[i]));
+	im.zero = ZERO_SLIP * scale;
+	double atol[DIM];
+	for (int i = 0; i < DIM; ++i)
+		atol[i] = tolerance * scale * (i == WORK ? z0 : 1.0);
+	const double e = p->e_cushion_mathavan, frictionless = (1.0 + e) * z0 / (c * c);
+	modes_after(&im, y, EV_COUNT);
+	phase ph = {false, 0.0};
+	// The first step: about what the control settles on for smooth impacts.
+	double h = FIRST_STEP * power(tolerance, 0.2) * frictionless;
+	double k1[DIM], err_last = 1e-4, pp = 0.0; // pp: the impulse so far
+	bool rejected = false;
+	derivative(&im, y, k1);
+	pool_dopri5_step step;
+	for (int tries = 0;; ++tries) {
+		if (tries == MAX_TRIES)
 			return POOL_MATHAVAN_JAMMED;
-		const double z = approach(&k, it.y);
-		step(&k, &it, &next, dp);
-		double z1 = approach(&k, next.y), h = dp;
-		if (z1 < 0.0) { // compression ends inside this step: cut it where ż'_I reaches 0
-			h = dp * z / (z - z1);
-			step(&k, &it, &next, h);
-			z1 = 0.0; // linear in the step's impulse: 0 up to rounding, and compression is over
-			next.y[VY] -= approach(&k, next.y) / c;
+		// Sliding contacts oppose their slip. One that would reach zero slip within the step (at
+		// its present rate) is landed there: the step is cut to end where the slip, along the
+		// direction held that brings it to zero (landing), reaches it; near there, the direction
+		// is held (the slip's own is lost in the step's error). Its small miss is cancelled.
+		double hs = h;
+		int lands = -1;
+		im.m.nose_small = im.m.cloth_small = im.zero;
+		for (int i = 0; i < 2; ++i) {
+			if (!sliding(&im.m, i))
+				continue;
+			double sl[2], rate[2], kl[DIM];
+			slip_and_rate(&im, i, y, k1, sl, rate);
+			if (dot2(sl, sl) <= im.zero * im.zero)
+				continue;
+			double *dir = i == NOSE ? im.m.nose_dir : im.m.cloth_dir;
+			unit_or_keep(sl, dir);
+			const double reach = closing_distance(sl, rate, im.zero);
+			if (!(reach < hs))
+				continue;
+			const double keep[2] = {dir[0], dir[1]};
+			const double d = landing(&im, y, i, sl, kl);
+			if (d < hs) {
+				hs = d;
+				lands = i;
+				*(i == NOSE ? &im.m.nose_small : &im.m.cloth_small) = LAND_HOLD * sqrt(dot2(sl, sl));
+			} else {
+				dir[0] = keep[0], dir[1] = keep[1];
+			}
 		}
-		work += 0.5 * h * (z + z1);
-		it = next;
-	}
-	// Restitution: the normal force gives back e² of the compression's work.
-	double remaining = e * e * work;
-	for (int j = 0; remaining > 0.0 && j < max_steps; ++j) {
-		const double z = approach(&k, it.y); // <= 0: leaving
-		step(&k, &it, &next, dp);
-		const double z1 = approach(&k, next.y);
-		const double given = -0.5 * dp * (z + z1);
-		if (given >= remaining) {
-			// ż'_I is linear in the step's impulse h: ż' = z + q h with q = (z1 − z)/dp, and the work
-			// given back, −(z h + q h²/2), reaches `remaining` at the root below.
-			const double q = (z1 - z) / dp;
-			const double h = q < 0.0 ? (z + sqrt(fmax(z * z - 2.0 * q * remaining, 0.0))) / -q : dp;
-			step(&k, &it, &next, fmin(h, dp));
-			it = next;
-			break;
+		if (lands != 1 && sliding(&im.m, CLOTH)) { // the nose lands: the cloth's own direction
+			double sl[2];
+			cloth_slip(y, sl);
+			if (dot2(sl, sl) > im.zero * im.zero)
+				unit_or_keep(sl, im.m.cloth_dir);
 		}
-		remaining -= given;
-		it = next;
+		// A sliding contact whose slip the step would turn over many times (its friction's turn
+		// rate, about 7/2 mu N / |slip|, times the step above QUASI) follows its slow manifold: the
+		// friction that would hold it, cut to its cone (the direction its slip turns to at once).
+		im.m.nose_quasi = im.m.cloth_quasi = false;
+		double sln[2], slc[2];
+		nose_slip(&im.k, y, sln);
+		cloth_slip(y, slc);
+		const double reach_n = 3.5 * im.k.mu_i * hs / QUASI, reach_c = 3.5 * im.k.mu_c * (im.k.s + im.k.c * im.k.mu_i) * hs / QUASI;
+		if ((lands != NOSE && sliding(&im.m, NOSE) && dot2(sln, sln) < reach_n * reach_n) ||
+		    (lands != CLOTH && sliding(&im.m, CLOTH) && dot2(slc, slc) < reach_c * reach_c)) {
+			forces o, held;
+			contact_forces(&im, y, &o);
+			double sl[2], dn[2], dc[2];
+			nose_slip(&im.k, y, sl);
+			if (lands != NOSE && sliding(&im.m, NOSE) && dot2(sl, sl) * QUASI * QUASI < sq(3.5 * im.k.mu_i * hs)) {
+				dn[0] = -o.f[0] / im.k.mu_i, dn[1] = -o.f[1] / im.k.mu_i;
+				dc[0] = -o.g[0], dc[1] = -o.g[1];
+				unit_or_keep(dc, dc);
+				forces_for(&im, true, im.m.cloth_stuck || im.m.airborne, dn, dc, &held);
+				im.m.nose_quasi = held.ok && dot2(held.f, held.f) < sq(MARGINAL * im.k.mu_i);
+			}
+			cloth_slip(y, sl);
+			if (lands != CLOTH && sliding(&im.m, CLOTH) && dot2(sl, sl) * QUASI * QUASI < sq(3.5 * im.k.mu_c * o.nc * hs)) {
+				dn[0] = -o.f[0] / im.k.mu_i, dn[1] = -o.f[1] / im.k.mu_i;
+				forces_for(&im, im.m.nose_stuck, true, dn, dn, &held);
+				im.m.cloth_quasi = held.ok && dot2(held.g, held.g) < sq(MARGINAL * im.k.mu_c * held.nc);
+			}
+			if (im.m.nose_quasi || im.m.cloth_quasi)
+				derivative(&im, y, k1);
+		}
+		pool_dopri5_take(derivative, &im, DIM, y, k1, hs, &step);
+		double err = 0.0;
+		for (int i = 0; i < DIM; ++i)
+			err = fmax(err, fabs(step.err[i]) / atol[i]);
+#ifdef MATHAVAN_DEBUG
+		{
+			double a[2], b[2];
+			nose_slip(&im.k, y, a);
+			cloth_slip(y, b);
+			fprintf(stderr, "try %d p %.6g h %.3g err %.3g modes ns%d cs%d air%d slips I (%.3g %.3g) C (%.3g %.3g) vz %.3g z %.3g W %.4g\n", tries, pp / frictionless, hs / frictionless, err, im.m.nose_stuck, im.m.cloth_stuck, im.m.airborne, a[0], a[1], b[0], b[1], y[VZ], im.k.c * y[VY] + im.k.s * y[VZ], y[WORK]);
+		}
+#endif
+		// Step control for the error of order 5.
+		// Step control (Hairer's for DOPRI5: the error's trend from the last accepted step
+		// damps the growth; no growth right after a rejection).
+		const double e_now = fmax(err, 1e-10);
+		const double grow = fmin(5.0, fmax(0.1, 0.9 * power(e_now, -0.17) * power(err_last, 0.04)));
+		if (err > 1.0 && hs > 1e-12 * frictionless) {
+			h = hs * fmin(grow, 1.0);
+			rejected = true;
+			continue;
+		}
+		err_last = fmax(err, 1e-4);
+		// The earliest event inside the step.
+		event first = EV_COUNT;
+		double theta = 2.0;
+		for (int ev = 0; ev < EV_COUNT; ++ev) {
+			if (!event_active(&im, (event)ev))
+				continue;
+			const double g0 = event_value(&im, &ph, (event)ev, y), g1 = event_value(&im, &ph, (event)ev, step.y1);
+			const bool crossed = ev == EV_LANDING ? g0 >= 0.0 && g1 < 0.0 : g0 > 0.0 && g1 <= 0.0;
+			if (!crossed)
+				continue;
+			const double t = locate(&im, &ph, (event)ev, &step, g0, g1);
+			if (t < theta)
+				theta = t, first = (event)ev;
+		}
+		if (first == EV_COUNT && lands >= 0) { // landed: the slip is zero
+			for (int i = 0; i < DIM; ++i)
+				y[i] = step.y1[i];
+			im.m.nose_small = im.m.cloth_small = im.zero;
+#ifdef MATHAVAN_COUNT
+			++pool_mathavan_event_count[8 + lands];
+#endif
+			modes_after(&im, y, lands == NOSE ? EV_NOSE_SLIP_ZERO : EV_CLOTH_SLIP_ZERO);
+			derivative(&im, y, k1);
+			continue;
+		}
+		if (first == EV_COUNT) {
+			for (int i = 0; i < DIM; ++i) {
+				y[i] = step.y1[i];
+				k1[i] = step.k[6][i];
+			}
+			if (hs == h)
+				h = hs * (rejected ? fmin(grow, 1.0) : grow);
+			rejected = false;
+			pp += hs;
+			if (!ph.restitution && pp > JAM_IMPULSES * frictionless)
+				return POOL_MATHAVAN_JAMMED;
+			continue;
+		}
+		pool_dopri5_dense(&step, theta, y);
+#ifdef MATHAVAN_DEBUG
+		fprintf(stderr, "  event %d at theta %.6g\n", first, theta);
+#endif
+#ifdef MATHAVAN_COUNT
+		++pool_mathavan_event_count[first];
+#endif
+		if (first == EV_END) {
+			if (ph.restitution)
+				break;
+			y[VY] = -im.k.s * y[VZ] / im.k.c; // ż'_I = 0: compression is over
+			ph.restitution = true;
+			ph.work_end = (1.0 - e * e) * y[WORK];
+			if (!(y[WORK] > ph.work_end))
+				break; // e = 0: nothing given back
+		} else {
+			modes_after(&im, y, first);
+		}
+		derivative(&im, y, k1);
 	}
-	st->vel = to_world(ex, ey, ez, it.y[VX], it.y[VY], it.y[VZ]);
-	st->omega = pool_v3_scale(to_world(ex, ey, ez, it.y[UX], it.y[UY], it.y[UZ]), 1.0 / R);
+	st->vel = to_world(ex, ey, ez, y[VX], y[VY], y[VZ]);
+	st->omega = pool_v3_scale(to_world(ex, ey, ez, y[UX], y[UY], y[UZ]), 1.0 / R);
 	return POOL_MATHAVAN_RESOLVED;
 }
 
@@ -196,5 +883,13 @@ bool pool_cushion_mathavan_resolve(const pool_sim_def *def, pool_ball_state *s, 
 	if (def->models.cushion != POOL_CUSHION_MATHAVAN2010 || s->motion == POOL_MOTION_AIRBORNE ||
 	    fabs(s->pos.z - def->params.ball_radius) > POOL_TOUCH_TOLERANCE)
 		return false;
-	return pool_cushion_mathavan(s, &def->params, n, POOL_MATHAVAN_STEPS) != POOL_MATHAVAN_JAMMED;
+#ifdef MATHAVAN_TRACE
+	const pool_ball_state in = *s;
+	const long e0 = pool_mathavan_evals;
+	const bool r = pool_cushion_mathavan(s, &def->params, n, POOL_MATHAVAN_TOLERANCE) != POOL_MATHAVAN_JAMMED;
+	fprintf(stderr, "impact v %.4f %.4f %.4f w %.3f %.3f %.3f n %.4f %.4f %.4f evals %ld\n", in.vel.x, in.vel.y, in.vel.z, in.omega.x, in.omega.y, in.omega.z, n.x, n.y, n.z, pool_mathavan_evals - e0);
+	return r;
+#else
+	return pool_cushion_mathavan(s, &def->params, n, POOL_MATHAVAN_TOLERANCE) != POOL_MATHAVAN_JAMMED;
+#endif
 }

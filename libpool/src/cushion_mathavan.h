@@ -14,10 +14,12 @@
 
 #include "pool/sim.h"
 
-/// Impulse steps over the estimated impact (cushion_mathavan.c).
-#define POOL_MATHAVAN_STEPS 128
-/// Substeps of a step where a contact changes between sticking and sliding.
-#define POOL_MATHAVAN_SUBSTEPS 16
+/// Error tolerance of each integration step, relative to the impact's speed scale (its largest
+/// velocity or surface speed R |w| component). At this value the outgoing velocities differ from
+/// the same equations integrated far finer (tools/mathavan_reference.c) by at most
+/// MATHAVAN_RANDOM_WORST of the speed scale over random impacts (0.1-8 m/s, any incidence, spin
+/// and side; test_model_fidelity.c). Cost: tools/bench_models.c.
+#define POOL_MATHAVAN_TOLERANCE 1e-5
 
 /// What pool_cushion_mathavan did.
 typedef enum pool_mathavan_outcome {
@@ -27,10 +29,10 @@ typedef enum pool_mathavan_outcome {
 } pool_mathavan_outcome;
 
 /// Resolves the impact of ball s (on the cloth) with a cushion nose; n is the unit normal from
-/// the nose to the ball centre (pool_cushion_normal). steps: impulse steps over the estimated
-/// impact (POOL_MATHAVAN_STEPS; more for a finer run). Only s->vel and s->omega change; the
+/// the nose to the ball centre (pool_cushion_normal). tolerance: of each integration step
+/// (POOL_MATHAVAN_TOLERANCE; smaller is finer and dearer). Only s->vel and s->omega change; the
 /// caller derives the motion state. Deterministic: a fixed sequence of double operations.
-pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *s, const pool_params *p, pool_vec3 n, int steps);
+pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *s, const pool_params *p, pool_vec3 n, double tolerance);
 
 /// The cushion handler's entry (cushion.c): resolves s's impact by this model when the def
 /// selects it (models.cushion) and the ball is on the cloth, and says so; false leaves s to
