@@ -1,5 +1,5 @@
 // Mathavan, Jackson & Parkin (2010) cushion impact: the equations of motion over the normal
-// impulse, integrated adaptively with the contacts' stick-slip transitions located exactly.
+// impulse, integrated adaptively, the contacts' stick-slip transitions taken where they happen.
 //
 // Frame of the impact: y towards the cushion (horizontal), z up, x = y × z along the rail. The
 // nose touches the ball at r_I = R (0, c, s) from its centre (c = cos θ, s = sin θ; sin θ = 2/5 at
@@ -27,19 +27,23 @@
 // work given back is e² W_c (Stronge's energetic coefficient, the paper's (16)).
 //
 // Between events the system is smooth (the friction directions turn smoothly while both contacts
-// slide) and is integrated by Dormand & Prince's 5(4) pair with step control (dopri5.c). Events
-// are located on the step's dense output: a sliding contact's slip reaching zero (it sticks or
-// reverses), a stuck contact's friction leaving its cone (it slides), the ball leaving or landing
-// on the cloth, the end of compression and of restitution. At each the modes are decided again
-// (Coulomb's law: stick where the stick friction fits the cone, else slide along the slip's rate).
+// slide) and is integrated by Dormand & Prince's 5(4) pair with step control (dopri5.c). Where it
+// is not, the integration stops on it:
+//   - a stuck contact's friction leaving its cone, the ball leaving or landing on the cloth, the
+//     end of compression and of restitution are located on the step's dense output;
+//   - a sliding contact's slip reaching zero is landed on: the step is cut to end there (landing)
+//     and the small miss cancelled by the impulse that ends it (cancel_slip);
+// and the modes are decided again by Coulomb's law (decide_modes: stick where the friction that
+// holds the contact fits its cone, else slide the way the slip then grows).
+// Near zero slip a sliding contact's friction turns at a rate of about 7/2 mu N / |slip|, a stiff
+// mode no explicit step resolves cheaply; where that rate times the step passes QUASI and the
+// contact is near sticking, the step takes the slow manifold the slip is drawn to: the friction
+// that would hold the contact, cut to its cone.
 #include "cushion_mathavan.h"
 
 #include <math.h>
 
 #include "dopri5.h"
-#ifdef MATHAVAN_DEBUG
-#include <stdio.h>
-#endif
 #include "vec3.h"
 
 /// A slip below this fraction of the impact's speed scale counts as zero: a sliding contact there
@@ -61,8 +65,8 @@
 #define MARGINAL_RATE 1e-5
 /// The first step, times tolerance^(1/5) and the frictionless impact's impulse.
 #define FIRST_STEP 2.0
-/// Step tries before the impact is given up as jammed (Petit's law takes it; none of the random
-/// impacts of test_model_fidelity comes near: see MATHAVAN_STEPS_MAX there).
+/// Step tries before the impact is given up as jammed (Petit's law takes it; random impacts take
+/// at most a few hundred: pool-bench-models --accuracy).
 #define MAX_TRIES 2000
 /// Compression given up as jammed (friction stopping ż'_I's decrease) beyond this many times the
 /// normal impulse of the frictionless impact.
@@ -76,7 +80,7 @@ typedef struct law {
 } law;
 
 // How each contact behaves until the next event, and the directions sliding contacts oppose
-// while their slip is (about) zero or beyond a zero crossing inside a step.
+// while their slip is (about) zero.
 typedef struct modes {
 	bool nose_stuck, cloth_stuck, airborne;
 	bool nose_quasi, cloth_quasi; // this step: a sliding contact's slip too small for the step
@@ -126,7 +130,7 @@ static void unit_or_keep(const double v[2], double out[2]) {
 }
 
 // The direction a sliding contact's friction opposes: its slip's, but `ref` while the slip is
-// about zero, or once it has crossed zero inside a step (until the event puts the step there).
+// within `zero` (its own direction is lost in the state's rounding or the step's error).
 static void slide_direction(const double slip[2], const double ref[2], double zero, double out[2]) {
 	const double s2 = dot2(slip, slip);
 	if (s2 <= zero * zero) {
@@ -186,7 +190,8 @@ static void forces_for(const impact *im, bool nose_stuck, bool cloth_stuck, cons
 	}
 }
 
-// The forces at y in the current modes. A sliding contact whose slip is within `zero` is held:
+// The forces at y in the current modes. A sliding contact whose slip is within `zero` (and which a
+// step is not landing on zero, where it keeps the direction it arrives in) is held:
 // its friction is the one that would keep it stuck, cut to its cone's edge when beyond it (and
 // then it slides along that friction). This is Coulomb's law where the slip's own direction is
 // lost in rounding: where a contact has just started to slide (its slip growing from zero, at
@@ -195,7 +200,8 @@ static void contact_forces(const impact *im, const double *y, forces *o) {
 	const law *k = &im->k;
 	const modes *m = &im->m;
 	double slip[2], dn[2] = {0.0, 0.0}, dc[2] = {0.0, 0.0};
-	if (!im->frozen && !m->nose_stuck && !m->cloth_stuck && !m->airborne && !m->nose_quasi && !m->cloth_quasi) {
+	if (!im->frozen && !m->nose_stuck && !m->cloth_stuck && !m->airborne && !m->nose_quasi && !m->cloth_quasi &&
+	    m->nose_small <= im->zero && m->cloth_small <= im->zero) {
 		// Both sliding on the cloth (most of an impact): each friction against its slip.
 		const double si[2] = {y[VX] + k->s * y[UY] - k->c * y[UZ], -k->s * y[VY] + k->c * y[VZ] + y[UX]};
 		const double sc[2] = {y[VX] - y[UY], y[VY] + y[UX]};
@@ -215,7 +221,7 @@ static void contact_forces(const impact *im, const double *y, forces *o) {
 	bool nose_held = m->nose_stuck, cloth_held = m->cloth_stuck || m->airborne;
 	if (!nose_held) {
 		nose_slip(k, y, slip);
-		nose_held = !(im->frozen & 1u) && (m->nose_quasi || dot2(slip, slip) <= im->zero * im->zero);
+		nose_held = !(im->frozen & 1u) && (m->nose_quasi || (m->nose_small <= im->zero && dot2(slip, slip) <= im->zero * im->zero));
 		if (im->frozen & 1u)
 			dn[0] = m->nose_dir[0], dn[1] = m->nose_dir[1];
 		else
@@ -223,7 +229,7 @@ static void contact_forces(const impact *im, const double *y, forces *o) {
 	}
 	if (!cloth_held) {
 		cloth_slip(y, slip);
-		cloth_held = !(im->frozen & 2u) && (m->cloth_quasi || dot2(slip, slip) <= im->zero * im->zero);
+		cloth_held = !(im->frozen & 2u) && (m->cloth_quasi || (m->cloth_small <= im->zero && dot2(slip, slip) <= im->zero * im->zero));
 		if (im->frozen & 2u)
 			dc[0] = m->cloth_dir[0], dc[1] = m->cloth_dir[1];
 		else
@@ -259,35 +265,17 @@ static void derivative_of(const impact *im, const double *y, const forces *o, do
 	dy[WORK] = k->c * y[VY] + k->s * y[VZ];
 }
 
-#ifdef MATHAVAN_DEBUG
-static int debug_stages;
-#endif
-#ifdef MATHAVAN_COUNT
-long pool_mathavan_evals, pool_mathavan_event_count[16];
-#endif
 static void derivative(const void *ctx, const double *y, double *dy) {
 	const impact *im = ctx;
-#ifdef MATHAVAN_COUNT
-	++pool_mathavan_evals;
-#endif
 	forces o;
 	contact_forces(im, y, &o);
 	derivative_of(im, y, &o, dy);
-#ifdef MATHAVAN_DEBUG
-	if (debug_stages) {
-		double a[2];
-		nose_slip(&im->k, y, a);
-		fprintf(stderr, "        stage slip I (%.4g %.4g) f (%.4g %.4g) ref (%.3g %.3g)\n", a[0], a[1], o.f[0], o.f[1], im->m.nose_dir[0], im->m.nose_dir[1]);
-	}
-#endif
 }
 
 // ---------------------------------------------------------------- deciding the modes
 
 // Coulomb's law where a contact's slip is zero: it sticks if the friction that keeps it so fits
-// its cone, else it slides along the direction its slip then grows in (for the cloth, the slip's
-// rate without its own friction; for the nose on the cloth, whose own friction also moves the
-// cloth's normal force, the fixed point of that, found by iteration).
+// its cone, else it slides along the direction its slip then grows in (start_direction).
 typedef struct choice {
 	bool zero[2];   // the contact's slip is zero
 	bool slide[2];  // the contact was seen to leave stick (or reverse): it may not stick now
@@ -400,13 +388,6 @@ static void decide_modes(impact *im, const double *y, const choice *ch) {
 					ok = ok && dot2(o.f, o.f) <= k->mu_i * k->mu_i;
 				if (cloth_stick)
 					ok = ok && dot2(o.g, o.g) <= k->mu_c * k->mu_c * o.nc * o.nc;
-#ifdef MATHAVAN_DEBUG
-				{
-					double rn[2], rc[2];
-					slip_rates(im, y, rn, rc);
-					fprintf(stderr, "    decide air %d ns %d cs %d: fromzero %d %d dirs (%.4g %.4g) (%.4g %.4g) rates (%.4g %.4g) (%.4g %.4g) f (%.4g %.4g) g (%.4g %.4g) nc %.4g ok %d vz %g\n", air, nose_stick, cloth_stick, from_zero[0], from_zero[1], m->nose_dir[0], m->nose_dir[1], m->cloth_dir[0], m->cloth_dir[1], rn[0], rn[1], rc[0], rc[1], o.f[0], o.f[1], o.g[0], o.g[1], o.nc, ok, y[VZ]);
-				}
-#endif
 				if (ok)
 					return;
 			}
@@ -471,7 +452,7 @@ static double event_value(const impact *im, const phase *ph, event ev, const dou
 static bool event_active(const impact *im, event ev) {
 	const modes *m = &im->m;
 	switch (ev) {
-	case EV_NOSE_SLIP_ZERO: // reached in q (approach_rate), not located
+	case EV_NOSE_SLIP_ZERO: // reached by landing steps, not located
 	case EV_CLOTH_SLIP_ZERO:
 		return false;
 	case EV_NOSE_SLIPS:
@@ -617,8 +598,8 @@ static pool_vec3 to_world(pool_vec3 ex, pool_vec3 ey, pool_vec3 ez, double x, do
 	return pool_v3_add(pool_v3_add(pool_v3_scale(ex, x), pool_v3_scale(ey, y)), pool_v3_scale(ez, z));
 }
 
-// Modes at the start, or after an event at y (`ev` happened; EV_COUNT: the start, or a slip
-// found about zero between steps). A contact whose slip counts as zero has it cancelled first.
+// Modes at the start, or after an event at y (`ev` happened; EV_COUNT: the start). A contact
+// whose slip counts as zero has it cancelled first.
 static void modes_after(impact *im, double *y, event ev) {
 	double slip[2];
 	choice ch = {{false, false}, {false, false}, ev == EV_LIFT_OFF};
@@ -691,6 +672,21 @@ static double landing(impact *im, const double *y, int i, const double s[2], dou
 	return det != 0.0 && lambda > 0.0 && dot2(dir, s) > 0.0 ? n / lambda : INFINITY;
 }
 
+// At the end of compression (ż'_I = 0): restitution starts, to give back e² of the work; a slip
+// reaching zero there too (a stuck nose makes the cloth's slip (1 + s) v_y in a head-on impact)
+// is decided. True at the end of restitution (the impact is over).
+static bool end_of_phase(impact *im, phase *ph, double *y, double e) {
+	if (ph->restitution)
+		return true;
+	y[VY] = -im->k.s * y[VZ] / im->k.c;
+	ph->restitution = true;
+	ph->work_end = (1.0 - e * e) * y[WORK];
+	if (!(y[WORK] > ph->work_end))
+		return true; // e = 0: nothing given back
+	modes_after(im, y, EV_COUNT);
+	return false;
+}
+
 pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_params *p, pool_vec3 n,
                                             double tolerance) {
 	const pool_vec3 nh = pool_v3_xy(n);
@@ -728,6 +724,12 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 	for (int tries = 0;; ++tries) {
 		if (tries == MAX_TRIES)
 			return POOL_MATHAVAN_JAMMED;
+		if (!(event_value(&im, &ph, EV_END, y) > 0.0)) { // a step (a landing) ended on the phase's end
+			if (end_of_phase(&im, &ph, y, e))
+				break;
+			derivative(&im, y, k1);
+			continue;
+		}
 		// Sliding contacts oppose their slip. One that would reach zero slip within the step (at
 		// its present rate) is landed there: the step is cut to end where the slip, along the
 		// direction held that brings it to zero (landing), reaches it; near there, the direction
@@ -797,15 +799,6 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 		double err = 0.0;
 		for (int i = 0; i < DIM; ++i)
 			err = fmax(err, fabs(step.err[i]) / atol[i]);
-#ifdef MATHAVAN_DEBUG
-		{
-			double a[2], b[2];
-			nose_slip(&im.k, y, a);
-			cloth_slip(y, b);
-			fprintf(stderr, "try %d p %.6g h %.3g err %.3g modes ns%d cs%d air%d slips I (%.3g %.3g) C (%.3g %.3g) vz %.3g z %.3g W %.4g\n", tries, pp / frictionless, hs / frictionless, err, im.m.nose_stuck, im.m.cloth_stuck, im.m.airborne, a[0], a[1], b[0], b[1], y[VZ], im.k.c * y[VY] + im.k.s * y[VZ], y[WORK]);
-		}
-#endif
-		// Step control for the error of order 5.
 		// Step control (Hairer's for DOPRI5: the error's trend from the last accepted step
 		// damps the growth; no growth right after a rejection).
 		const double e_now = fmax(err, 1e-10);
@@ -834,9 +827,7 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			for (int i = 0; i < DIM; ++i)
 				y[i] = step.y1[i];
 			im.m.nose_small = im.m.cloth_small = im.zero;
-#ifdef MATHAVAN_COUNT
-			++pool_mathavan_event_count[8 + lands];
-#endif
+			pp += hs;
 			modes_after(&im, y, lands == NOSE ? EV_NOSE_SLIP_ZERO : EV_CLOTH_SLIP_ZERO);
 			derivative(&im, y, k1);
 			continue;
@@ -855,20 +846,10 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			continue;
 		}
 		pool_dopri5_dense(&step, theta, y);
-#ifdef MATHAVAN_DEBUG
-		fprintf(stderr, "  event %d at theta %.6g\n", first, theta);
-#endif
-#ifdef MATHAVAN_COUNT
-		++pool_mathavan_event_count[first];
-#endif
+		pp += theta * hs;
 		if (first == EV_END) {
-			if (ph.restitution)
+			if (end_of_phase(&im, &ph, y, e))
 				break;
-			y[VY] = -im.k.s * y[VZ] / im.k.c; // ż'_I = 0: compression is over
-			ph.restitution = true;
-			ph.work_end = (1.0 - e * e) * y[WORK];
-			if (!(y[WORK] > ph.work_end))
-				break; // e = 0: nothing given back
 		} else {
 			modes_after(&im, y, first);
 		}
@@ -883,13 +864,5 @@ bool pool_cushion_mathavan_resolve(const pool_sim_def *def, pool_ball_state *s, 
 	if (def->models.cushion != POOL_CUSHION_MATHAVAN2010 || s->motion == POOL_MOTION_AIRBORNE ||
 	    fabs(s->pos.z - def->params.ball_radius) > POOL_TOUCH_TOLERANCE)
 		return false;
-#ifdef MATHAVAN_TRACE
-	const pool_ball_state in = *s;
-	const long e0 = pool_mathavan_evals;
-	const bool r = pool_cushion_mathavan(s, &def->params, n, POOL_MATHAVAN_TOLERANCE) != POOL_MATHAVAN_JAMMED;
-	fprintf(stderr, "impact v %.4f %.4f %.4f w %.3f %.3f %.3f n %.4f %.4f %.4f evals %ld\n", in.vel.x, in.vel.y, in.vel.z, in.omega.x, in.omega.y, in.omega.z, n.x, n.y, n.z, pool_mathavan_evals - e0);
-	return r;
-#else
 	return pool_cushion_mathavan(s, &def->params, n, POOL_MATHAVAN_TOLERANCE) != POOL_MATHAVAN_JAMMED;
-#endif
 }
