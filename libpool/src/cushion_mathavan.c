@@ -63,6 +63,10 @@
 /// above minus this fraction of its friction's own rate, 7/2 mu: at a stick's marginal end it grows
 /// from rest, at rate 0 (the end is located to about this).
 #define MARGINAL_RATE 1e-5
+/// The start direction's length is found to this (relative) ...
+#define START_PRECISION 1e-14
+/// ... in at most this many tries (bisection alone takes about 60).
+#define START_ITERATIONS 100
 /// The first step, times tolerance^(1/5) and the frictionless impact's impulse.
 #define FIRST_STEP 2.0
 /// Step tries before the impact is given up as jammed (Petit's law takes it; random impacts take
@@ -311,24 +315,36 @@ static void start_direction(impact *im, const double *y, int i) {
 		B[0][j] = rate[i][0] - a[0];
 		B[1][j] = rate[i][1] - a[1];
 	}
+	// |d(lambda)|^2 - 1 falls as lambda grows past B's spectrum: Newton's method from above (hi,
+	// where |d| < 1), kept inside the bracket, bisecting where a step leaves it.
 	double lo = 0.0, hi = sqrt(dot2(a, a)) + fabs(B[0][0]) + fabs(B[0][1]) + fabs(B[1][0]) + fabs(B[1][1]);
-	double d[2] = {a[0], a[1]};
-	for (int it = 0; it < 100 && hi > lo; ++it) {
-		const double lambda = 0.5 * (lo + hi);
+	double d[2] = {a[0], a[1]}, lambda = hi;
+	for (int it = 0; it < START_ITERATIONS && hi > lo; ++it) {
 		const double m00 = lambda - B[0][0], m01 = -B[0][1], m10 = -B[1][0], m11 = lambda - B[1][1];
 		const double det = m00 * m11 - m01 * m10;
 		if (!(det != 0.0)) {
 			lo = lambda;
+			lambda = 0.5 * (lo + hi);
 			continue;
 		}
 		d[0] = (m11 * a[0] - m01 * a[1]) / det;
 		d[1] = (m00 * a[1] - m10 * a[0]) / det;
-		if (dot2(d, d) > 1.0)
+		const double excess = dot2(d, d) - 1.0;
+		if (excess > 0.0)
 			lo = lambda;
 		else
 			hi = lambda;
-		if (lambda == lo && lambda == hi)
+		if (fabs(excess) <= START_PRECISION)
 			break;
+		// d' = -M^-1 d, so (|d|^2)' = -2 d . M^-1 d.
+		const double e0 = (m11 * d[0] - m01 * d[1]) / det, e1 = (m00 * d[1] - m10 * d[0]) / det;
+		const double slope = -2.0 * (d[0] * e0 + d[1] * e1);
+		double next = slope < 0.0 ? lambda - excess / slope : 0.5 * (lo + hi);
+		if (!(next > lo && next < hi))
+			next = 0.5 * (lo + hi);
+		if (next == lambda)
+			break;
+		lambda = next;
 	}
 	im->frozen = 0u;
 	dir[0] = dir[1] = 0.0;
