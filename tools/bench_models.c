@@ -1,7 +1,7 @@
 // pool-bench-models: what the models cost. (1) One ball-cushion impact by each law (Petit's
 // pool_collide, Mathavan 2010's pool_cushion_mathavan, and the fixed-step reference it is judged
-// by at its old 128 steps), on a fixed set of random rolling/spinning impacts, timed in batches:
-// median and minimum per impact. (2) Whole breaks (frozen rack and 0.1 mm gap, 8 m/s) under
+// by at its old 128 steps), on a fixed set of random spinning impacts and one of rolling balls
+// without side, timed in batches: median and minimum per impact. (2) Whole breaks (frozen rack and 0.1 mm gap, 8 m/s) under
 // "thesis", with each measured law added, and with the defaults: median and minimum per shot, and
 // the ratio to thesis. --accuracy N instead: libpool's Mathavan integration against the reference
 // at 8,192 and 65,536 steps over N random impacts (0.1-8 m/s, any incidence, spin and side).
@@ -33,7 +33,8 @@ static volatile double sink; // keeps the results alive
 
 // Median and minimum per impact over BATCHES batches of IMPACTS impacts.
 // law: 0 Petit, 1 libpool's Mathavan, 2 the reference in 128 steps.
-static void time_law(const char *name, int law, const pool_params *p, const pool_ball_state *in, pool_vec3 n) {
+static void time_law(const char *set, const char *name, int law, const pool_params *p, const pool_ball_state *in,
+                     pool_vec3 n) {
 	static double t[BATCHES];
 	for (int b = 0; b < BATCHES; ++b) {
 		const double t0 = pool_bench_now_s();
@@ -52,7 +53,7 @@ static void time_law(const char *name, int law, const pool_params *p, const pool
 		sink = acc;
 	}
 	const pool_bench_summary s = pool_bench_summarise(t, BATCHES);
-	printf("cushion impact  %-34s median %8.3f us  min %8.3f us\n", name, 1e6 * s.median, 1e6 * s.min);
+	printf("cushion impact  %-8s %-34s median %8.3f us  min %8.3f us\n", set, name, 1e6 * s.median, 1e6 * s.min);
 }
 
 static int compare_doubles(const void *a, const void *b) {
@@ -175,8 +176,9 @@ int main(int argc, char **argv) {
 	for (int i = 1; i < argc; ++i) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
 			printf("usage: pool-bench-models [--runs N] [--accuracy N]\n"
-			       "Times one ball-cushion impact by Petit's law and by mathavan2010 (median and\n"
-			       "minimum per impact over %d batches of %d random impacts), then the 8 m/s break\n"
+			       "Times one ball-cushion impact by Petit's law, by mathavan2010 and by its reference\n"
+			       "in 128 fixed steps (median and minimum per impact over %d batches of %d random\n"
+			       "spinning impacts, and of rolling balls without side), then the 8 m/s break\n"
 			       "(frozen and 0.1 mm gap) under thesis, with each measured law, with the default\n"
 			       "models, N runs each (default 1000): median and minimum per shot, and the ratio\n"
 			       "to thesis. --accuracy N: libpool's Mathavan integration against the fixed-step\n"
@@ -220,11 +222,25 @@ int main(int argc, char **argv) {
 		const double top = 2.0 * urand() - 1.0;
 		in[i].omega = (pool_vec3){-top * in[i].vel.y / R, top * in[i].vel.x / R, (4.0 * urand() - 2.0) * v / R};
 	}
-	time_law("petit (pool_collide)", 0, p, in, n);
+	// Rolling balls without side, 0.2-3 m/s, 0-85 deg in: most rail impacts of a game (the cloth
+	// contact starts at zero slip).
+	static pool_ball_state rolling[IMPACTS];
+	for (int i = 0; i < IMPACTS; ++i) {
+		const double v = 0.2 + 2.8 * urand(), a = urand() * 85.0 * 3.14159265358979 / 180.0;
+		memset(&rolling[i], 0, sizeof rolling[i]);
+		rolling[i].pos = (pool_vec3){1.0, def.table.width - 0.03, R};
+		rolling[i].vel = (pool_vec3){v * sin(a), v * cos(a), 0.0};
+		rolling[i].omega = (pool_vec3){-rolling[i].vel.y / R, rolling[i].vel.x / R, 0.0};
+	}
 	char name[64];
 	snprintf(name, sizeof name, "mathavan2010 (tolerance %g)", POOL_MATHAVAN_TOLERANCE);
-	time_law(name, 1, p, in, n);
-	time_law("reference (128 fixed steps)", 2, p, in, n);
+	for (int set = 0; set < 2; ++set) {
+		const char *what = set ? "rolling" : "random";
+		const pool_ball_state *impacts = set ? rolling : in;
+		time_law(what, "petit (pool_collide)", 0, p, impacts, n);
+		time_law(what, name, 1, p, impacts, n);
+		time_law(what, "reference (128 fixed steps)", 2, p, impacts, n);
+	}
 	for (int g = 0; g < 2; ++g) {
 		const double gap = g ? 1e-4 : 0.0;
 		pool_sim_def d = def;
