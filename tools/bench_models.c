@@ -1,7 +1,8 @@
 // pool-bench-models: what the models cost. (1) One ball-cushion impact by each law (Petit's
 // pool_collide, Mathavan 2010's pool_cushion_mathavan, and the fixed-step reference it is judged
 // by at its old 128 steps), on a fixed set of random spinning impacts and one of rolling balls
-// without side, timed in batches: median and minimum per impact. (2) Whole breaks (frozen rack and 0.1 mm gap, 8 m/s) under
+// without side, and Mathavan's on rolling balls at single incidences (0, 10, 20, 30, 55, 80
+// degrees), timed in batches: median and minimum per impact. (2) Whole breaks (frozen rack and 0.1 mm gap, 8 m/s) under
 // "thesis", with each measured law added, and with the defaults: median and minimum per shot, and
 // the ratio to thesis. --accuracy N instead: libpool's Mathavan integration against the reference
 // at 8,192 and 65,536 steps over N random impacts (0.1-8 m/s, any incidence, spin and side).
@@ -178,7 +179,8 @@ int main(int argc, char **argv) {
 			printf("usage: pool-bench-models [--runs N] [--accuracy N]\n"
 			       "Times one ball-cushion impact by Petit's law, by mathavan2010 and by its reference\n"
 			       "in 128 fixed steps (median and minimum per impact over %d batches of %d random\n"
-			       "spinning impacts, and of rolling balls without side), then the 8 m/s break\n"
+			       "spinning impacts, and of rolling balls without side; mathavan2010 also on\n"
+			       "rolling balls at single incidences), then the 8 m/s break\n"
 			       "(frozen and 0.1 mm gap) under thesis, with each measured law, with the default\n"
 			       "models, N runs each (default 1000): median and minimum per shot, and the ratio\n"
 			       "to thesis. --accuracy N: libpool's Mathavan integration against the fixed-step\n"
@@ -240,6 +242,21 @@ int main(int argc, char **argv) {
 		time_law(what, "petit (pool_collide)", 0, p, impacts, n);
 		time_law(what, name, 1, p, impacts, n);
 		time_law(what, "reference (128 fixed steps)", 2, p, impacts, n);
+	}
+	// The cost of one incidence: rolling balls at 0.2-3 m/s all at that angle (near right angles
+	// the nose's slip turns as it shrinks to zero, which takes the integration many short steps).
+	for (int deg = 0; deg <= 80; deg += deg < 30 ? 10 : 25) {
+		static pool_ball_state at[IMPACTS];
+		const double a = deg * 3.14159265358979 / 180.0;
+		for (int i = 0; i < IMPACTS; ++i) {
+			const double v = 0.2 + 2.8 * (i + 0.5) / IMPACTS;
+			at[i] = rolling[i];
+			at[i].vel = (pool_vec3){v * sin(a), v * cos(a), 0.0};
+			at[i].omega = (pool_vec3){-at[i].vel.y / R, at[i].vel.x / R, 0.0};
+		}
+		char what[16];
+		snprintf(what, sizeof what, "roll %2d", deg);
+		time_law(what, name, 1, p, at, n);
 	}
 	for (int g = 0; g < 2; ++g) {
 		const double gap = g ? 1e-4 : 0.0;
