@@ -2,10 +2,11 @@
 // pool_collide, Mathavan 2010's pool_cushion_mathavan, and the fixed-step reference it is judged
 // by at its old 128 steps), on a fixed set of random spinning impacts and one of rolling balls
 // without side, and Mathavan's on rolling balls at single incidences (0, 10, 20, 30, 55, 80
-// degrees), timed in batches: median and minimum per impact. (2) Whole breaks (frozen rack and 0.1 mm gap, 8 m/s) under
-// "thesis", with each measured law added, and with the defaults: median and minimum per shot, and
-// the ratio to thesis. --accuracy N instead: libpool's Mathavan integration against the reference
-// at 8,192 and 65,536 steps over N random impacts (0.1-8 m/s, any incidence, spin and side).
+// degrees), timed in batches: median and minimum per impact. (2) Whole breaks (frozen rack and
+// 0.1 mm gap, 8 m/s) under "thesis", with each measured law added, and with the defaults: median
+// and minimum per shot, and the ratio to thesis. --accuracy N instead: libpool's Mathavan
+// integration against the reference at 8,192 and 65,536 steps over N random impacts (0.1-8 m/s,
+// any incidence, spin and side).
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>

@@ -10,7 +10,8 @@
 // dP at I (the paper's equations (12)-(17), derived again in vector form):
 //   1. the normal impulse dP along −(0, cos θ, sin θ);
 //   2. friction at I, in the tangent plane (x, y' = (0, −sin θ, cos θ)), opposing the slip
-//      s_I = (v_x + R(ω_y sin θ − ω_z cos θ), −v_y sin θ + v_z cos θ + R ω_x), at most mu_cushion_mathavan dP;
+//      s_I = (v_x + R(ω_y sin θ − ω_z cos θ), −v_y sin θ + v_z cos θ + R ω_x), at most
+//      mu_cushion_mathavan dP;
 //   3. the cloth's normal impulse dP_C: whatever brings v_z back to 0 (the ball stays on the
 //      cloth), never pulling (dP_C >= 0);
 //   4. friction at C opposing s_C = (v_x − R ω_y, v_y + R ω_x), at most mu_table dP_C.

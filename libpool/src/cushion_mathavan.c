@@ -225,7 +225,8 @@ static void contact_forces(const impact *im, const double *y, forces *o) {
 	bool nose_held = m->nose_stuck, cloth_held = m->cloth_stuck || m->airborne;
 	if (!nose_held) {
 		nose_slip(k, y, slip);
-		nose_held = !(im->frozen & 1u) && (m->nose_quasi || (m->nose_small <= im->zero && dot2(slip, slip) <= im->zero * im->zero));
+		nose_held = !(im->frozen & 1u) &&
+		            (m->nose_quasi || (m->nose_small <= im->zero && dot2(slip, slip) <= im->zero * im->zero));
 		if (im->frozen & 1u)
 			dn[0] = m->nose_dir[0], dn[1] = m->nose_dir[1];
 		else
@@ -233,7 +234,8 @@ static void contact_forces(const impact *im, const double *y, forces *o) {
 	}
 	if (!cloth_held) {
 		cloth_slip(y, slip);
-		cloth_held = !(im->frozen & 2u) && (m->cloth_quasi || (m->cloth_small <= im->zero && dot2(slip, slip) <= im->zero * im->zero));
+		cloth_held = !(im->frozen & 2u) &&
+		             (m->cloth_quasi || (m->cloth_small <= im->zero && dot2(slip, slip) <= im->zero * im->zero));
 		if (im->frozen & 2u)
 			dc[0] = m->cloth_dir[0], dc[1] = m->cloth_dir[1];
 		else
@@ -788,7 +790,8 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 		double sln[2], slc[2];
 		nose_slip(&im.k, y, sln);
 		cloth_slip(y, slc);
-		const double reach_n = 3.5 * im.k.mu_i * hs / QUASI, reach_c = 3.5 * im.k.mu_c * (im.k.s + im.k.c * im.k.mu_i) * hs / QUASI;
+		const double reach_n = 3.5 * im.k.mu_i * hs / QUASI;
+		const double reach_c = 3.5 * im.k.mu_c * (im.k.s + im.k.c * im.k.mu_i) * hs / QUASI;
 		if ((lands != NOSE && sliding(&im.m, NOSE) && dot2(sln, sln) < reach_n * reach_n) ||
 		    (lands != CLOTH && sliding(&im.m, CLOTH) && dot2(slc, slc) < reach_c * reach_c)) {
 			forces o, held;
