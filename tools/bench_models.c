@@ -63,23 +63,14 @@ static int compare_doubles(const void *a, const void *b) {
 	return x < y ? -1 : x > y;
 }
 
-// The largest difference of two outcomes' velocities and surface speeds, of the speed scale.
-static double difference(const pool_ball_state *in, const pool_ball_state *a, const pool_ball_state *b, double R) {
-	double scale = 0.0, d = 0.0;
-	for (int j = 0; j < 3; ++j) {
-		scale = fmax(scale, fmax(fabs((&in->vel.x)[j]), R * fabs((&in->omega.x)[j])));
-		d = fmax(d, fmax(fabs((&a->vel.x)[j] - (&b->vel.x)[j]), R * fabs((&a->omega.x)[j] - (&b->omega.x)[j])));
-	}
-	return d / scale;
-}
-
 static void print_quantiles(const char *what, double *d, int n) {
 	qsort(d, (size_t)n, sizeof d[0], compare_doubles);
 	printf("%-52s median %9.3g  p90 %9.3g  p99 %9.3g  worst %9.3g\n", what, d[n / 2], d[n * 9 / 10], d[n * 99 / 100],
 	       d[n - 1]);
 }
 
-// N random impacts as test_model_fidelity draws them, on the default table and parameters.
+// N random impacts as test_model_fidelity draws them (pool_mathavan_random_impact), on the default
+// table and parameters.
 static int accuracy(int impacts) {
 	const pool_params p = pool_default_params();
 	const double R = p.ball_radius, sin_t = (0.03629 - R) / R;
@@ -90,32 +81,21 @@ static int accuracy(int impacts) {
 			return 1;
 	uint64_t seed = 0x9E3779B97F4A7C15ull;
 	for (int i = 0; i < impacts; ++i) {
-		double u[5];
-		for (int k = 0; k < 5; ++k) {
-			seed ^= seed << 13;
-			seed ^= seed >> 7;
-			seed ^= seed << 17;
-			u[k] = (double)(seed >> 11) * (1.0 / 9007199254740992.0);
-		}
-		const double V = 0.1 + 7.9 * u[0], a = (178.0 * u[1] - 89.0) * 3.14159265358979 / 180.0;
-		const double top = u[2] < 0.6 ? 4.0 * u[2] / 0.6 - 2.0 : u[2] < 0.8 ? 1.0 : 0.0;
-		pool_ball_state b;
-		memset(&b, 0, sizeof b);
-		b.pos = pool_v3(1.0, 1.0, R);
-		b.vel = pool_v3(V * sin(a), V * cos(a), 0.0);
-		b.omega = pool_v3(-top * b.vel.y / R, top * b.vel.x / R, (6.0 * u[3] - 3.0) * V / R);
+		const pool_ball_state b = pool_mathavan_random_impact(&seed, R);
 		pool_ball_state ours = b, old = b, ref = b, fine = b;
 		if (pool_cushion_mathavan(&ours, &p, n, POOL_MATHAVAN_TOLERANCE) != POOL_MATHAVAN_RESOLVED ||
 		    pool_mathavan_reference(&old, &p, n, 128) != POOL_MATHAVAN_RESOLVED ||
 		    pool_mathavan_reference(&ref, &p, n, 8192) != POOL_MATHAVAN_RESOLVED ||
 		    pool_mathavan_reference(&fine, &p, n, 65536) != POOL_MATHAVAN_RESOLVED) {
 			fprintf(stderr, "pool-bench-models: impact %d not resolved\n", i);
+			for (int k = 0; k < 4; ++k)
+				free(d[k]);
 			return 1;
 		}
-		d[0][i] = difference(&b, &ours, &fine, R);
-		d[1][i] = difference(&b, &ours, &ref, R);
-		d[2][i] = difference(&b, &old, &fine, R);
-		d[3][i] = difference(&b, &ref, &fine, R);
+		d[0][i] = pool_mathavan_difference(&b, &ours, &fine, R);
+		d[1][i] = pool_mathavan_difference(&b, &ours, &ref, R);
+		d[2][i] = pool_mathavan_difference(&b, &old, &fine, R);
+		d[3][i] = pool_mathavan_difference(&b, &ref, &fine, R);
 	}
 	printf("%d random impacts (0.1-8 m/s, any incidence, spin and side), differences of the speed scale:\n", impacts);
 	char what[96];

@@ -30,6 +30,7 @@
 #include "mathavan_reference.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "vec3.h"
 
@@ -192,4 +193,32 @@ pool_mathavan_outcome pool_mathavan_reference(pool_ball_state *st, const pool_pa
 	st->vel = to_world(ex, ey, ez, it.b.vx, it.b.vy, it.b.vz);
 	st->omega = to_world(ex, ey, ez, it.b.wx, it.b.wy, it.b.wz);
 	return POOL_MATHAVAN_RESOLVED;
+}
+
+pool_ball_state pool_mathavan_random_impact(uint64_t *seed, double R) {
+	double u[5]; // five draws an impact (the last unused), as test_model_fidelity has always drawn
+	for (int k = 0; k < 5; ++k) { // xorshift64; 53 bits to [0, 1)
+		*seed ^= *seed << 13;
+		*seed ^= *seed >> 7;
+		*seed ^= *seed << 17;
+		u[k] = (double)(*seed >> 11) * (1.0 / 9007199254740992.0);
+	}
+	const double deg = 3.14159265358979323846 / 180.0;
+	const double V = 0.1 + 7.9 * u[0], a = (178.0 * u[1] - 89.0) * deg;
+	const double top = u[2] < 0.6 ? 4.0 * u[2] / 0.6 - 2.0 : u[2] < 0.8 ? 1.0 : 0.0; // any; rolling; stun
+	pool_ball_state b;
+	memset(&b, 0, sizeof b);
+	b.pos = pool_v3(1.0, 1.0, R);
+	b.vel = pool_v3(V * sin(a), V * cos(a), 0.0);
+	b.omega = pool_v3(-top * b.vel.y / R, top * b.vel.x / R, (6.0 * u[3] - 3.0) * V / R);
+	return b;
+}
+
+double pool_mathavan_difference(const pool_ball_state *in, const pool_ball_state *a, const pool_ball_state *b, double R) {
+	double scale = 0.0, d = 0.0;
+	for (int j = 0; j < 3; ++j) {
+		scale = fmax(scale, fmax(fabs((&in->vel.x)[j]), R * fabs((&in->omega.x)[j])));
+		d = fmax(d, fmax(fabs((&a->vel.x)[j] - (&b->vel.x)[j]), R * fabs((&a->omega.x)[j] - (&b->omega.x)[j])));
+	}
+	return d / scale;
 }

@@ -218,33 +218,13 @@ static void test_mathavan_random_impacts(void **state) {
 	static double diff[IMPACTS], self[IMPACTS];
 	uint64_t seed = 0x9E3779B97F4A7C15ull;
 	for (int i = 0; i < IMPACTS; ++i) {
-		double u[5];
-		for (int k = 0; k < 5; ++k) {
-			seed ^= seed << 13;
-			seed ^= seed >> 7;
-			seed ^= seed << 17;
-			u[k] = (double)(seed >> 11) * (1.0 / 9007199254740992.0);
-		}
-		const double V = 0.1 + 7.9 * u[0], a = (178.0 * u[1] - 89.0) * DEG;
-		const double top = u[2] < 0.6 ? 4.0 * u[2] / 0.6 - 2.0 : u[2] < 0.8 ? 1.0 : 0.0; // any; rolling; stun
-		pool_ball_state b;
-		memset(&b, 0, sizeof b);
-		b.pos = pool_v3(1.0, 1.0, R);
-		b.vel = pool_v3(V * sin(a), V * cos(a), 0.0);
-		b.omega = pool_v3(-top * b.vel.y / R, top * b.vel.x / R, (6.0 * u[3] - 3.0) * V / R);
+		const pool_ball_state b = pool_mathavan_random_impact(&seed, R);
 		pool_ball_state ours = b, ref = b, fine = b;
 		assert_int_equal(pool_cushion_mathavan(&ours, &p, n, POOL_MATHAVAN_TOLERANCE), POOL_MATHAVAN_RESOLVED);
 		assert_int_equal(pool_mathavan_reference(&ref, &p, n, REFERENCE_STEPS), POOL_MATHAVAN_RESOLVED);
 		assert_int_equal(pool_cushion_mathavan(&fine, &p, n, 1e-3 * POOL_MATHAVAN_TOLERANCE), POOL_MATHAVAN_RESOLVED);
-		double scale = 0.0, d = 0.0, d_self = 0.0;
-		for (int j = 0; j < 3; ++j) {
-			scale = fmax(scale, fmax(fabs((&b.vel.x)[j]), R * fabs((&b.omega.x)[j])));
-			d = fmax(d, fmax(fabs((&ours.vel.x)[j] - (&ref.vel.x)[j]), R * fabs((&ours.omega.x)[j] - (&ref.omega.x)[j])));
-			d_self = fmax(d_self, fmax(fabs((&ours.vel.x)[j] - (&fine.vel.x)[j]),
-			                           R * fabs((&ours.omega.x)[j] - (&fine.omega.x)[j])));
-		}
-		diff[i] = d / scale;
-		self[i] = d_self / scale;
+		diff[i] = pool_mathavan_difference(&b, &ours, &ref, R);
+		self[i] = pool_mathavan_difference(&b, &ours, &fine, R);
 		assert_true(pool_motion_energy(&p, &ours) <= pool_motion_energy(&p, &b) * (1.0 + ENERGY_ROUNDING));
 	}
 	qsort(diff, IMPACTS, sizeof diff[0], compare_doubles);
