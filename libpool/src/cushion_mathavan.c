@@ -42,6 +42,8 @@
 #include "cushion_mathavan.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "dopri5.h"
 #include "vec3.h"
@@ -116,13 +118,32 @@ static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + 
 static double sq(double x) { return x * x; }
 
 // x^a for the step control (x > 0), to about 1e-3 relative: 2^(a log2 x) from the mantissa and
-// the exponent, by polynomials.
+// the exponent, by polynomials. The mantissa, the exponent and the power of two are read and
+// written in the double's bits where x and the result are normal (frexp and ldexp otherwise: the
+// same values, at the cost of two library calls).
 static double power(double x, double a) {
+	uint64_t bits;
+	memcpy(&bits, &x, sizeof bits);
+	const int biased = (int)(bits >> 52 & 0x7ff);
 	int ex;
-	const double m = frexp(x, &ex), t = m - 0.75; // m in [0.5, 1)
+	double m; // in [0.5, 1)
+	if (biased > 0 && biased < 0x7ff) {
+		ex = biased - 1022;
+		bits = (bits & 0x800fffffffffffffull) | 0x3fe0000000000000ull;
+		memcpy(&m, &bits, sizeof m);
+	} else {
+		m = frexp(x, &ex);
+	}
+	const double t = m - 0.75;
 	const double l = ex + (-0.415037 + t * (1.9236 + t * (-1.2825 + t * 1.1398)));
 	const double y = a * l, n = floor(y), f = y - n;
-	return ldexp(1.0 + f * (0.6931472 + f * (0.2402265 + f * (0.0555041 + f * 0.0096181))), (int)n);
+	const double r = 1.0 + f * (0.6931472 + f * (0.2402265 + f * (0.0555041 + f * 0.0096181))); // in [1, 2)
+	if (!(n > -1000.0 && n < 1000.0))
+		return ldexp(r, (int)n);
+	const uint64_t two_n = (uint64_t)((int)n + 1023) << 52;
+	double scale;
+	memcpy(&scale, &two_n, sizeof scale);
+	return r * scale;
 }
 
 static void unit_or_keep(const double v[2], double out[2]) {
@@ -205,7 +226,7 @@ static void contact_forces(const impact *im, const double *y, forces *o) {
 	const modes *m = &im->m;
 	double slip[2], dn[2] = {0.0, 0.0}, dc[2] = {0.0, 0.0};
 	if (!im->frozen && !m->nose_stuck && !m->cloth_stuck && !m->airborne && !m->nose_quasi && !m->cloth_quasi &&
-	    m->nose_small <= im->zero && m->cloth_small <= im->zero) {
+	    m->nose_small <= im->zero && m->cloth_small <= im->zero) { // (derivative_sliding repeats this branch)
 		// Both sliding on the cloth (most of an impact): each friction against its slip.
 		const double si[2] = {y[VX] + k->s * y[UY] - k->c * y[UZ], -k->s * y[VY] + k->c * y[VZ] + y[UX]};
 		const double sc[2] = {y[VX] - y[UY], y[VY] + y[UX]};
@@ -276,6 +297,39 @@ static void derivative(const void *ctx, const double *y, double *dy) {
 	forces o;
 	contact_forces(im, y, &o);
 	derivative_of(im, y, &o, dy);
+}
+
+// The same while both contacts slide on the cloth and neither is held (both_sliding): the
+// common case, without the modes' tests (contact_forces' first branch and derivative_of).
+static void derivative_sliding(const void *ctx, const double *y, double *dy) {
+	const impact *im = ctx;
+	const law *k = &im->k;
+	const double si[2] = {y[VX] + k->s * y[UY] - k->c * y[UZ], -k->s * y[VY] + k->c * y[VZ] + y[UX]};
+	const double sc[2] = {y[VX] - y[UY], y[VY] + y[UX]};
+	const double ni = dot2(si, si), nc = dot2(sc, sc), z2 = im->zero * im->zero;
+	if (!(ni > z2 && nc > z2)) {
+		derivative(ctx, y, dy);
+		return;
+	}
+	const double gi = k->mu_i / sqrt(ni);
+	const double f[2] = {-gi * si[0], -gi * si[1]};
+	const double n_c = k->s - k->c * f[1];
+	const double gc = k->mu_c * n_c / sqrt(nc);
+	const double g[2] = {-gc * sc[0], -gc * sc[1]};
+	dy[VX] = f[0] + g[0];
+	dy[VY] = -k->c - k->s * f[1] + g[1];
+	dy[VZ] = 0.0;
+	dy[UX] = 2.5 * (f[1] + g[1]);
+	dy[UY] = 2.5 * (k->s * f[0] - g[0]);
+	dy[UZ] = -2.5 * k->c * f[0];
+	dy[WORK] = k->c * y[VY] + k->s * y[VZ];
+}
+
+// Both contacts slide on the cloth along their slips (derivative_sliding applies).
+static bool both_sliding(const impact *im) {
+	const modes *m = &im->m;
+	return !im->frozen && !m->nose_stuck && !m->cloth_stuck && !m->airborne && !m->nose_quasi && !m->cloth_quasi &&
+	       m->nose_small <= im->zero && m->cloth_small <= im->zero;
 }
 
 // ---------------------------------------------------------------- deciding the modes
@@ -814,10 +868,11 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			if (im.m.nose_quasi || im.m.cloth_quasi)
 				derivative(&im, y, k1);
 		}
-		pool_dopri5_take(derivative, &im, DIM, y, k1, hs, &step);
+		pool_dopri5_take(both_sliding(&im) ? derivative_sliding : derivative, &im, DIM, y, k1, hs, &step);
 		double err = 0.0;
 		for (int i = 0; i < DIM; ++i)
-			err = fmax(err, fabs(step.err[i]) / atol[i]);
+			if (fabs(step.err[i]) / atol[i] > err) // (fmax is a library call)
+				err = fabs(step.err[i]) / atol[i];
 		// Step control (Hairer's for DOPRI5: the error's trend from the last accepted step
 		// damps the growth; no growth right after a rejection).
 		const double e_now = fmax(err, 1e-10);
