@@ -22,19 +22,20 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "batch_shot.h"
+#include "batch_layout.h"
+#include "pool/batch.h"
 #include "cli.h"
 #include "game_json.h"
 #include "json_writer.h"
 #include "models_json.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "text_buffer.h"
 #include "text_escape.h"
 
 #define PROGRAM "pool-batch"
 // The scenario parser's limit on numbers (nothing on a table is 1e9 m, m/s or degrees).
-#define BATCH_MAX_ABS 1e9
+#define BATCH_MAX_ABS POOL_SCENARIO_MAX_ABS
 #define BATCH_MAX_SHOTS 100000000L
 #define BATCH_MAX_THREADS 1024
 // Rows formatted ahead of the one being written: bounds the memory of a streamed run.
@@ -601,6 +602,7 @@ typedef struct worker {
 	batch *b;
 	pool_sim *sim;
 	pool_ball_state *final;
+	pool_batch_shot shot;
 	sbuf row;
 } worker;
 
@@ -659,12 +661,11 @@ static void put_pos(sbuf *r, const batch *b, int k, const pool_vec3 *pos) {
 	sb_num(r, pos->z);
 }
 
-/// Simulates shot i and returns its row (malloc'd; NULL when out of memory).
 /// The game's cells of a row (CSV: ,legal,fouls,outcome,reason,points; JSON lines: the same keys).
-static void put_game(sbuf *r, bool json, const pool_scenario *layout, const pool_sim *sim) {
-	pool_game_result g;
+static void put_game(sbuf *r, bool json, const pool_batch_shot *shot) {
+	const pool_game_result g = shot->game;
 	char fouls[128] = "";
-	if (!pool_batch_judge(layout, sim, &g)) { // the parser checked the layout's balls: not expected
+	if (!shot->judged) { // the parser checked the layout's balls: not expected
 		sb_str(r, json ? ",\"legal\":null,\"fouls\":null,\"outcome\":null,\"reason\":null,\"points\":null"
 		               : ",,,,,");
 		return;
@@ -694,24 +695,20 @@ static void put_game(sbuf *r, bool json, const pool_scenario *layout, const pool
 	sb_int(r, g.points);
 }
 
+/// Simulates shot i and returns its row (malloc'd; NULL when out of memory).
 static char *run_shot(worker *w, long i, bool *internal) {
 	const batch *b = w->b;
 	const pool_scenario *layout = b->layout;
 	batch_strike s;
 	shot_strike(b, i, &s);
-	char error[400] = "";
-	pool_batch_strike strike = {s.ball, s.v[P_SPEED], s.v[P_PHI], s.v[P_THETA], s.v[P_A], s.v[P_B]};
-	(void)pool_batch_shoot(layout, &strike, &w->sim, w->final, error, sizeof error, internal);
+	const pool_batch_strike strike = {s.ball, s.v[P_SPEED], s.v[P_PHI], s.v[P_THETA], s.v[P_A], s.v[P_B]};
+	pool_batch_shot *shot = &w->shot;
+	(void)pool_batch_run(layout, &strike, 1, &w->sim, shot, w->final);
+	*internal = shot->failed;
+	const char *error = shot->message;
 
 	int n = layout->ball_count;
-	int events = 0;
-	int32_t hit = 0;
-	bool has_hit = false;
-	if (!error[0]) {
-		pool_sim_events(w->sim, &events);
-		has_hit = pool_batch_first_hit(w->sim, s.ball, &hit);
-	}
-	const char *stop = error[0] ? "error" : pool_stop_reason_name(pool_sim_stop_reason(w->sim));
+	const char *stop = error[0] ? "error" : pool_stop_reason_name(shot->stop_reason);
 	bool json = b->o->format == FORMAT_JSONL;
 	sbuf *r = &w->row;
 	r->length = 0;
@@ -737,12 +734,12 @@ static char *run_shot(worker *w, long i, bool *internal) {
 		}
 	} else {
 		sb_str(r, json ? ",\"events\":" : ",");
-		sb_int(r, events);
+		sb_int(r, shot->events);
 		sb_str(r, json ? ",\"end_time\":" : ",");
-		sb_num(r, pool_sim_end_time(w->sim));
+		sb_num(r, shot->end_time);
 		sb_str(r, json ? ",\"first_hit\":" : ",");
-		if (has_hit)
-			sb_int(r, hit);
+		if (shot->hit)
+			sb_int(r, shot->first_hit);
 		else if (json)
 			sb_str(r, "null");
 		for (int pass = 0; pass < 2; ++pass) {
@@ -762,7 +759,7 @@ static char *run_shot(worker *w, long i, bool *internal) {
 		if (!json)
 			sb_str(r, ","); // the empty error column
 		if (layout->has_game)
-			put_game(r, json, layout, w->sim);
+			put_game(r, json, shot);
 		sb_str(r, json ? ",\"final\":[" : "");
 		for (int k = 0; k < n; ++k) {
 			if (json) {
@@ -1111,9 +1108,8 @@ int main(int argc, char **argv) {
 	}
 
 	pool_scenario layout;
-	double layout_degrees[2]; // strike.phi, strike.theta as written
 	char err[512];
-	status = pool_batch_load_layout(o.layout_path, o.max_input, &layout, layout_degrees, err, sizeof err);
+	status = pool_batch_load_layout(o.layout_path, o.max_input, &layout, err, sizeof err);
 	if (status) {
 		fprintf(stderr, "%s: %s\n", PROGRAM, err);
 		free(b);
@@ -1126,12 +1122,12 @@ int main(int argc, char **argv) {
 	strike_base base = {0};
 	if (layout.has_strike) {
 		base.has_speed = true;
-		base.strike.ball = layout.strike_ball;
-		base.strike.v[P_SPEED] = layout.strike.speed;
-		base.strike.v[P_PHI] = layout_degrees[0];
-		base.strike.v[P_THETA] = layout_degrees[1];
-		base.strike.v[P_A] = layout.strike.a;
-		base.strike.v[P_B] = layout.strike.b;
+		base.strike.ball = layout.written.ball; // the strike as the file gives it, in degrees
+		base.strike.v[P_SPEED] = layout.written.speed;
+		base.strike.v[P_PHI] = layout.written.phi;
+		base.strike.v[P_THETA] = layout.written.theta;
+		base.strike.v[P_A] = layout.written.a;
+		base.strike.v[P_B] = layout.written.b;
 	} else {
 		base.strike.ball = layout.balls[0].id;
 	}

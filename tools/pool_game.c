@@ -14,13 +14,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "batch_shot.h"
+#include "pool/batch.h"
 #include "cli.h"
 #include "game/peer.h"
 #include "game_json.h"
 #include "json_writer.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "text_escape.h"
 
 #define PROGRAM "pool-game"
@@ -63,8 +63,8 @@ static const char usage_text[] =
 	"                      in hand), and answers one line as above\n"
 	"  --layout FILE       start from this libpool-scenario/1 (table, params, models, balls, and its\n"
 	"                      \"game\" state if any; its strike is ignored) instead of the opening rack\n"
-	"  --table PRESET      table preset for the opening rack (wpa-9ft default; three_cushion plays\n"
-	"                      on a carom table of 2.84 x 1.42 m without pockets)\n"
+	"  --table PRESET      table preset for the opening rack, with its balls (wpa-9ft default;\n"
+	"                      three_cushion plays on carom: 2.84 x 1.42 m, no pockets, 61.5 mm balls)\n"
 	"  --noise NAME|SPEC   Gaussian noise on every strike (none, fastfiz, or NAME=SD pairs as in\n"
 	"                      pool-batch); shot k draws sample k of --seed\n"
 	"  --seed S            seed of the noise (default 1)\n"
@@ -162,16 +162,10 @@ static int shot_error(long shot, const char *format, ...) {
 	return POOL_EXIT_BAD_INPUT;
 }
 
-/// The carom table three cushion is played on (UMB: 2.84 x 1.42 m, nose 37 mm, balls 61.5 mm
-/// and 210 g), without pocket mouths.
-static void carom_table(pool_sim_def *def) {
-	def->table.length = 2.84;
-	def->table.width = 1.42;
-	def->table.cushion_height = 0.037;
-	def->table.corner_mouth = 0.0;
-	def->table.side_mouth = 0.0;
-	def->params.ball_radius = 0.03075;
-	def->params.ball_mass = 0.21;
+/// The table and balls of a preset (pool_table_preset, pool_params_preset: the balls and cloth
+/// its game is played with); nonzero when the name is not a preset.
+static int use_preset(pool_sim_def *def, const char *name) {
+	return pool_table_preset(name, &def->table) != POOL_OK || pool_params_preset(name, &def->params) != POOL_OK;
 }
 
 static int setup(game *g) {
@@ -204,11 +198,11 @@ static int setup(game *g) {
 				return pool_cli_usage_error(PROGRAM, "--layout: balls[%d]: must be at rest on the cloth", i);
 	} else {
 		g->def = pool_default_sim_def();
-		if (g->rules == POOL_GAME_THREE_CUSHION && !o->table_preset)
-			carom_table(&g->def);
-		else if (o->table_preset && pool_table_preset(o->table_preset, &g->def.table) != POOL_OK)
-			return pool_cli_usage_error(PROGRAM, "--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft)",
-			                            pool_cli_arg(o->table_preset));
+		// Three cushion is played on the carom table (UMB: no pockets, carom balls) unless told.
+		const char *preset = o->table_preset ? o->table_preset : g->rules == POOL_GAME_THREE_CUSHION ? "carom" : NULL;
+		if (preset && use_preset(&g->def, preset))
+			return pool_cli_usage_error(PROGRAM, "--table: unknown preset '%s' (wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom)",
+			                            pool_cli_arg(preset));
 		g->count = pool_game_rack(g->rules, &g->def.table, &g->def.params, GAME_RACK_GAP, g->balls,
 		                          POOL_GAME_MAX_BALLS);
 		if (g->count < 0) {
@@ -276,6 +270,8 @@ static void jw_table(pool_jw *w, const pool_sim_def *def) {
 	pool_jw_number(w, def->table.corner_mouth);
 	pool_jw_key(w, "side_mouth");
 	pool_jw_number(w, def->table.side_mouth);
+	pool_jw_key(w, "pockets");
+	pool_jw_string(w, pool_pockets_model_name(def->table.pockets));
 	pool_jw_end(w, '}');
 	pool_jw_key(w, "ball_radius");
 	pool_jw_number(w, def->params.ball_radius);
@@ -548,8 +544,8 @@ static int play_shot(game *g, game_peer *peer, bool *over) {
 	                                             : nominal;
 	if (!(simulated.theta >= 0.0 && simulated.theta < 90.0))
 		return shot_error(shot, "strike.theta: must be in [0, 90) degrees");
-	const pool_strike strike = {.speed = simulated.speed, .phi = simulated.phi * POOL_BATCH_DEG,
-	                            .theta = simulated.theta * POOL_BATCH_DEG, .a = simulated.a, .b = simulated.b};
+	const pool_strike strike = {.speed = simulated.speed, .phi = simulated.phi * POOL_DEGREE,
+	                            .theta = simulated.theta * POOL_DEGREE, .a = simulated.a, .b = simulated.b};
 	pool_error e;
 	pool_result r = pool_sim_strike(g->sim, simulated.ball, &strike, &e);
 	if (r != POOL_OK) {
@@ -633,9 +629,9 @@ static int play(game *g) {
 		pool_jw_key(&g->record, "speed");
 		pool_jw_number(&g->record, g->noise.speed);
 		pool_jw_key(&g->record, "phi");
-		pool_jw_number(&g->record, g->noise.phi / POOL_BATCH_DEG);
+		pool_jw_number(&g->record, g->noise.phi / POOL_DEGREE);
 		pool_jw_key(&g->record, "theta");
-		pool_jw_number(&g->record, g->noise.theta / POOL_BATCH_DEG);
+		pool_jw_number(&g->record, g->noise.theta / POOL_DEGREE);
 		pool_jw_key(&g->record, "a");
 		pool_jw_number(&g->record, g->noise.a);
 		pool_jw_key(&g->record, "b");

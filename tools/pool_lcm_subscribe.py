@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Example LCM subscriber for libpool: prints events (POOL_EVENT) and shots (POOL_SHOT).
+"""Example LCM subscriber for libpool: prints events (POOL_EVENT) and shots (POOL_SHOT, or
+POOL_SHOT2 with --json).
 
 Uses the PyPI `lcm` package and the Python types lcm-gen writes at build time into
 BUILD/lcm_types/python (package pool_lcm). Run it with the project's venv:
@@ -7,9 +8,10 @@ BUILD/lcm_types/python (package pool_lcm). Run it with the project's venv:
     .venv/bin/python tools/pool_lcm_subscribe.py --lcm-url 'udpm://239.255.76.67:7667?ttl=0'
     .venv/bin/python tools/pool_lcm_subscribe.py --json --count 1 > shot.json
 
-Text mode prints one line per event and per shot. --json prints each shot, one per line, as a
-libpool-result/1 document (the shape `pool-sim -o` writes) plus an "lcm" object with shot_id,
-request_id and utime, and "error" when the shot carries one.
+Text mode prints one line per event and per shot. --json prints each shot (from POOL_SHOT2: the
+shot with its cushion parts and table), one per line, as a libpool-result/1 document (the shape
+`pool-sim -o` writes: table, ball_radius, params, models, events with their parts, final, stats)
+plus an "lcm" object with shot_id, request_id and utime, and "error" when the shot carries one.
 """
 import argparse
 import glob
@@ -49,19 +51,34 @@ def ball_json(b):
             "state": state}
 
 
-def event_json(e):
-    """An event_t as a result-file event object."""
+def event_json(e, part=""):
+    """An event_t as a result-file event object (part: the cushion's, from event2_t or shot2_t)."""
     out = {"t": e.t, "type": e.type, "balls": [b.id for b in e.balls]}
     if e.rail:
         out["rail"] = e.rail
+    if part:
+        out["part"] = part
     if e.pocket:
         out["pocket"] = e.pocket
     out["after"] = [ball_json(b) for b in e.balls]
     return out
 
 
-def shot_json(s):
-    """A shot_t as a libpool-result/1 document."""
+def shot2_json(s2):
+    """A shot2_t as a libpool-result/1 document: shot_json's, with the table's setup first and
+    each event's cushion part."""
+    doc = shot_json(s2.shot, list(s2.event_parts) if s2.num_event_parts == s2.shot.num_events else None)
+    if s2.has_table:
+        try:
+            setup = json.loads(s2.table.json)
+        except ValueError:
+            setup = {}
+        doc = dict({k: setup[k] for k in ("table", "ball_radius", "params", "models") if k in setup}, **doc)
+    return doc
+
+
+def shot_json(s, parts=None):
+    """A shot_t as a libpool-result/1 document (parts: one per event, as shot2_t carries them)."""
     counts = {}
     for e in s.events:
         counts[e.type] = counts.get(e.type, 0) + 1
@@ -69,7 +86,7 @@ def shot_json(s):
     ordered.update({t: n for t, n in counts.items() if t not in ordered})
     doc = {
         "format": "libpool-result/1",
-        "events": [event_json(e) for e in s.events],
+        "events": [event_json(e, parts[i] if parts else "") for i, e in enumerate(s.events)],
         "final": [ball_json(b) for b in s.final_states],
         "stats": {
             "events": s.num_events,
@@ -104,7 +121,7 @@ def main():
 
     sys.path.insert(0, find_types_dir(args.types_dir))
     import lcm
-    from pool_lcm import event_t, shot_t
+    from pool_lcm import event_t, shot2_t, shot_t
 
     url = args.lcm_url or os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
     lc = lcm.LCM(url)
@@ -118,17 +135,19 @@ def main():
             flush=True)
 
     def on_shot(channel, data):
+        if args.json:
+            s2 = shot2_t.decode(data)
+            shots.append(s2.shot.shot_id)
+            print(json.dumps(shot2_json(s2)), flush=True)
+            return
         s = shot_t.decode(data)
         shots.append(s.shot_id)
-        if args.json:
-            print(json.dumps(shot_json(s)), flush=True)
-        else:
-            err = ' error="%s"' % s.error if s.error else ""
-            print("shot shot=%d request=%d events=%d balls=%d sim_time=%r stop=%s%s" % (
-                s.shot_id, s.request_id, s.num_events, s.num_balls, s.sim_time,
-                s.stop_reason or "-", err), flush=True)
+        err = ' error="%s"' % s.error if s.error else ""
+        print("shot shot=%d request=%d events=%d balls=%d sim_time=%r stop=%s%s" % (
+            s.shot_id, s.request_id, s.num_events, s.num_balls, s.sim_time,
+            s.stop_reason or "-", err), flush=True)
 
-    subs = [lc.subscribe("POOL_SHOT", on_shot)]
+    subs = [lc.subscribe("POOL_SHOT2" if args.json else "POOL_SHOT", on_shot)]
     if not args.json:
         subs.append(lc.subscribe("POOL_EVENT", on_event))
     # liblcm keeps at most 30 received messages per subscription until handle() takes them and

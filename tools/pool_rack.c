@@ -8,7 +8,7 @@
 #include "cli.h"
 #include "json_writer.h"
 #include "models_json.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #define PROGRAM "pool-rack"
 #define POOL_PI 3.14159265358979323846

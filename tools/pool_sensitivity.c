@@ -17,6 +17,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "batch_layout.h"
 #include "cli.h"
 #include "read_input.h"
 #include "sensitivity/study.h"
@@ -301,9 +302,8 @@ static bool overwrites_scenario(const char *scenario, const char *prefix, const 
 
 static int run_study(const sens_options *o, pool_scenario *layout, sens_study *s) {
 	int status = 0;
-	double degrees[2];
 	char err[512];
-	status = pool_batch_load_layout(o->scenario_path, o->max_input, layout, degrees, err, sizeof err);
+	status = pool_batch_load_layout(o->scenario_path, o->max_input, layout, err, sizeof err);
 	if (status) {
 		fprintf(stderr, "%s: %s\n", PROGRAM, err);
 		return status;
@@ -319,13 +319,12 @@ static int run_study(const sens_options *o, pool_scenario *layout, sens_study *s
 	if (!layout->has_strike)
 		return pool_cli_usage_error(PROGRAM, "%s: strike: missing (the study perturbs the scenario's "
 		                            "strike)", pool_cli_arg(o->scenario_path));
-	s->nominal = (pool_batch_strike){layout->strike_ball, layout->strike.speed, degrees[0], degrees[1],
-	                                 layout->strike.a, layout->strike.b};
+	s->nominal = layout->written;
 	if (o->sd_spec && (status = parse_sd(o->sd_spec, s->noise.cue_sd)) != 0)
 		return status;
 	// The noise in pool_noise's units (radians for the angles, as pool_noise_parse makes them).
-	s->noise.cue = (pool_noise){.speed = s->noise.cue_sd[SENS_SPEED], .phi = s->noise.cue_sd[SENS_PHI] * POOL_BATCH_DEG,
-	                            .theta = s->noise.cue_sd[SENS_THETA] * POOL_BATCH_DEG, .a = s->noise.cue_sd[SENS_A],
+	s->noise.cue = (pool_noise){.speed = s->noise.cue_sd[SENS_SPEED], .phi = s->noise.cue_sd[SENS_PHI] * POOL_DEGREE,
+	                            .theta = s->noise.cue_sd[SENS_THETA] * POOL_DEGREE, .a = s->noise.cue_sd[SENS_A],
 	                            .b = s->noise.cue_sd[SENS_B]};
 	if (o->noise_spec) {
 		pool_error e;
@@ -335,7 +334,7 @@ static int run_study(const sens_options *o, pool_scenario *layout, sens_study *s
 			                                                                     e.message + strlen("noise: ")));
 		}
 		const pool_noise *n = &s->noise.cue;
-		const double sd[SENS_CUE_COUNT] = {n->speed, n->phi / POOL_BATCH_DEG, n->theta / POOL_BATCH_DEG, n->a, n->b};
+		const double sd[SENS_CUE_COUNT] = {n->speed, n->phi / POOL_DEGREE, n->theta / POOL_DEGREE, n->a, n->b};
 		memcpy(s->noise.cue_sd, sd, sizeof sd);
 	}
 	s->noise.position_sd = o->position_sd;

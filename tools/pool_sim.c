@@ -8,7 +8,7 @@
 
 #include "cli.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "view_page.h"
 #ifdef POOL_HAVE_LCM
 #include "sim_publish.h"
@@ -224,8 +224,7 @@ int main(int argc, char **argv) {
 		}
 		hook = pool_lcm_sim_publisher_event;
 		hook_user = publisher;
-		if (scenario.has_game)
-			pool_lcm_sim_publisher_set_game(publisher, &scenario.game, &scenario.def.table);
+		pool_lcm_sim_publisher_set_shot(publisher, &scenario.def, scenario.has_game ? &scenario.game : NULL);
 	}
 #endif
 	clock_t start = clock();

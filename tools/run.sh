@@ -9,7 +9,7 @@ cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j"$JOBS" >/dev/null
 # (every command creates the directories it writes to)
 echo "== Quartic solver: libpool against GSL =="
-build/release/tools/pool-bench-quartic
+build/release/bench/pool-bench-quartic
 
 echo "== Break shot: pool-rack 8ball | pool-sim | pool-plot =="
 build/release/tools/pool-rack 8ball -o out/break_scenario.json

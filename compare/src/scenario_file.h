@@ -7,7 +7,7 @@
 #include <string>
 
 extern "C" {
-#include "scenario.h"
+#include "pool/scenario.h"
 }
 
 namespace pool_compare {

@@ -13,8 +13,8 @@ pool_result pool_game_shoot(pool_sim *sim, const pool_sim_def *def, const pool_b
 		r = pool_sim_add_ball(sim, &balls[i], error);
 	if (r == POOL_OK)
 		r = pool_sim_strike(sim, state->cue_ball, strike, error);
-	if (r == POOL_OK)
-		r = pool_sim_run(sim);
+	if (r == POOL_OK && (r = pool_sim_run(sim)) != POOL_OK) // (what the run met: pool_sim_last_error)
+		return pool_game_fail(error, r, "%s", pool_sim_last_error(sim)[0] ? pool_sim_last_error(sim) : pool_result_str(r));
 	if (r != POOL_OK)
 		return error && !error->message[0] ? pool_game_fail(error, r, "%s", pool_result_str(r)) : r;
 	const pool_game_shot shot = pool_game_shot_of_sim(sim);

@@ -95,7 +95,10 @@ int pool_nose_pieces_nearest(const pool_table_def *table, pool_rail rail, pool_v
 	return pieces;
 }
 
-int pool_nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 *point) {
+// The point of a rail's nose nearest to a ball centred at pos: on its line at pos's coordinate
+// along the rail, or over a pocket mouth the nearest end of the nose; 0 when the rail has no
+// nose left (its mouths cover it).
+static int nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 *point) {
 	const int along_x = pool_rail_along_x(rail);
 	const double along = along_x ? pos.x : pos.y;
 	double at = along;
@@ -117,7 +120,7 @@ int pool_nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos
 
 pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail) {
 	pool_vec3 nose;
-	if (!pool_nose_nearest(table, rail, pos, &nose)) { // (no nose on the rail: its line, as ever)
+	if (!nose_nearest(table, rail, pos, &nose)) { // (no nose on the rail: its line, as ever)
 		nose = pos;
 		nose.z = table->cushion_height;
 		if (pool_rail_along_x(rail))

@@ -37,15 +37,10 @@ pool_pocket pool_pocket_at(const pool_table_def *table, pool_rail rail, double a
 /// over a mouth its nearest point is the end of the nose at the mouth's edge.
 pool_vec3 pool_cushion_normal(const pool_table_def *table, pool_vec3 pos, pool_rail rail);
 
-/// The point of a rail's nose nearest to a ball centred at pos: on its line at pos's coordinate
-/// along the rail, or over a pocket mouth the nearest end of the nose; 0 when the rail has no
-/// nose left (its mouths cover it).
-int pool_nose_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 *point);
-
 /// The point of each piece of a rail's nose (the rail less its mouths: one piece on a short
 /// rail, two on a long rail with side pockets) nearest to a ball centred at pos, into
 /// points[0..2); returns how many pieces there are (0: the mouths cover the rail). A ball over a
-/// mouth narrower than 2R touches both its ends at once (pool_nose_nearest has only one).
+/// mouth narrower than 2R touches both its ends at once (pool_cushion_normal takes the nearer only).
 int pool_nose_pieces_nearest(const pool_table_def *table, pool_rail rail, pool_vec3 pos, pool_vec3 points[2]);
 
 /// The nose's ends on a rail: the coordinates along the rail where a pocket mouth begins or ends

@@ -70,7 +70,8 @@ void pool_history_place(pool_history *h, int i, const pool_ball_state *s, double
 }
 
 pool_result pool_history_record(pool_history *h, const pool_allocator *a, double t, pool_event_type type, pool_rail rail,
-                                pool_pocket pocket, const int *balls, int m, const pool_ball_state *cur) {
+                                pool_pocket pocket, pool_cushion_part part, const int *balls, int m,
+                                const pool_ball_state *cur) {
 	// The callers reserve the room first (pool_sim_step for an event and the LINK events it
 	// brings); should that count ever fall short, the history grows here, and if it cannot, the
 	// caller fails the shot rather than write past the arrays.
@@ -83,7 +84,7 @@ pool_result pool_history_record(pool_history *h, const pool_allocator *a, double
 	e->type = type;
 	e->rail = rail;
 	e->pocket = pocket;
-	e->part = POOL_PART_NONE; // the world names the part of a cushion event (pockets "jaws", "none")
+	e->part = part;
 	e->ball_count = m;
 	e->first_state = h->n_states;
 	for (int k = 0; k < m; ++k)

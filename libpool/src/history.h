@@ -36,10 +36,12 @@ pool_result pool_history_reserve(pool_history *h, const pool_allocator *a, int e
 /// Ball i's first state, at its placement at time t (room reserved).
 void pool_history_place(pool_history *h, int i, const pool_ball_state *s, double t);
 
-/// Records an event at t of the balls balls[0..m), whose after-states are cur[balls[k]], growing
-/// the history when the room reserved falls short; POOL_ERR_OUT_OF_MEMORY records nothing.
+/// Records an event at t of the balls balls[0..m), whose after-states are cur[balls[k]], where
+/// (rail, pocket, part) says (pool_event), growing the history when the room reserved falls
+/// short; POOL_ERR_OUT_OF_MEMORY records nothing.
 pool_result pool_history_record(pool_history *h, const pool_allocator *a, double t, pool_event_type type, pool_rail rail,
-                                pool_pocket pocket, const int *balls, int m, const pool_ball_state *cur);
+                                pool_pocket pocket, pool_cushion_part part, const int *balls, int m,
+                                const pool_ball_state *cur);
 
 /// The state of each of the n balls at t, from its latest state begun at or before t (its
 /// first state when t precedes them all), evolved in closed form.

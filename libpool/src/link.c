@@ -13,6 +13,7 @@
 #include "memory.h"
 #include "motion.h"
 #include "predict.h"
+#include "table_shape.h"
 #include "vec3.h"
 
 // ---- the world, as LINK may ask it
@@ -27,6 +28,14 @@ static pool_result record(const pool_link *link, double t, pool_event_type type,
                           int m) {
 	return link->world.record(link->world.ctx, t, type, pocket, balls, m);
 }
+// Records an event at t of balls[0..m), which started new segments there, and has their
+// contacts predicted again (whatever the record's outcome: the segments have changed).
+static pool_result record_changed(const pool_link *link, double t, pool_event_type type, pool_pocket pocket,
+                                  const int *balls, int m) {
+	const pool_result r = record(link, t, type, pocket, balls, m);
+	link->world.changed(link->world.ctx, balls, m, t);
+	return r;
+}
 
 static int in_play(pool_motion motion) { return motion != POOL_MOTION_POCKETED && motion != POOL_MOTION_OFF_TABLE; }
 
@@ -34,9 +43,10 @@ static int planar(const pool_link *link) { return !link->def->airborne; }
 
 // ---- lifetime
 
-void pool_link_init(pool_link *link, const pool_sim_def *def, double dc, const pool_allocator *alloc,
-                    const pool_link_world *world) {
+void pool_link_init(pool_link *link, const pool_sim_def *def, const struct pool_table_shape *shape, double dc,
+                    const pool_allocator *alloc, const pool_link_world *world) {
 	link->def = def;
+	link->ws.shape = shape;
 	link->dc = dc;
 	link->alloc = alloc;
 	link->world = *world;
@@ -219,7 +229,7 @@ static void join(pool_link *link, int i, int c, double t) {
 	begin_segment(link, i, &s, t);
 }
 
-// pool_link_pressed_pair with the two balls' accelerations given.
+// pressed_pair with the two balls' accelerations given.
 static int pressed_with(const pool_ball_state *s, pool_vec3 a0, pool_vec3 a1) {
 	const pool_vec3 d = pool_v3_sub(s[0].pos, s[1].pos);
 	const double dist = pool_v3_len(d);
@@ -243,7 +253,11 @@ static pool_vec3 free_accel(const pool_link *link, const pool_ball_state *s) {
 	return pool_motion_accel(&link->def->params, &f);
 }
 
-int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s) {
+// 1 when two touching balls s[0..2) (closed-form states at the contact) are pressed together:
+// their normal approach acceleration, the difference of their free accelerations (a linked
+// ball's: as if released, gravity above the cloth) along the normal less the curvature of their
+// relative path (|v_t|^2 / 2R parts them), is positive.
+static int pressed_pair(const pool_link *link, const pool_ball_state *s) {
 	return pressed_with(s, free_accel(link, &s[0]), free_accel(link, &s[1]));
 }
 
@@ -390,9 +404,7 @@ static pool_result cut_cluster(pool_link *link, int c, double t) {
 	unsettle(link, c);
 	int *idx = link->members;
 	const int m = members(link, c, idx);
-	const pool_result r = record(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
-	link->world.changed(link->world.ctx, idx, m, t);
-	return r;
+	return record_changed(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
 }
 
 pool_result pool_link_cut(pool_link *link, const int *inv, int m, double t) {
@@ -430,6 +442,7 @@ static pool_result link_begin(pool_link *link, const int *seed, int m, double t)
 	if (c < 0) {
 		for (c = 0; c < link->n && link->clusters[c].active; ++c) {
 		}
+		POOL_ASSERT(c < link->n); // a cluster has a ball: there are never more than balls
 		memset(&link->clusters[c], 0, sizeof link->clusters[c]);
 		link->stats.clusters++;
 	}
@@ -562,9 +575,7 @@ static pool_result release(pool_link *link, const int *idx, int m, double t) {
 		link->loose[idx[k]] = 0;
 		begin_segment(link, idx[k], &s[k], t);
 	}
-	const pool_result r = record(link, t, POOL_EVENT_LINK_END, POOL_POCKET_NONE, idx, m);
-	link->world.changed(link->world.ctx, idx, m, t);
-	return r;
+	return record_changed(link, t, POOL_EVENT_LINK_END, POOL_POCKET_NONE, idx, m);
 }
 
 // Members past a rail's contact line inside a pocket mouth at t (the step's LCP has no rail
@@ -584,8 +595,7 @@ static pool_result pocket_strays(pool_link *link, int c, double t) {
 		pool_take_out_of_play(&s, POOL_MOTION_POCKETED);
 		link->cluster_of[k] = -1;
 		begin_segment(link, k, &s, t);
-		const pool_result r = record(link, t, POOL_EVENT_POCKET, pocket, &k, 1);
-		link->world.changed(link->world.ctx, &k, 1, t);
+		const pool_result r = record_changed(link, t, POOL_EVENT_POCKET, pocket, &k, 1);
 		if (r)
 			return r;
 	}
@@ -729,6 +739,7 @@ static int drive_in(pool_link *link, int c, const pool_ball_state *s, int m, dou
 
 pool_result pool_link_step_event(pool_link *link, int i, double t) {
 	const int c = link->cluster_of[i];
+	POOL_ASSERT(c >= 0 && link->clusters[c].active); // a step event is a linked ball's
 	pool_cluster *cl = &link->clusters[c];
 	// The balls of the next step (gathered afresh at every step), and the room for the events
 	// this one records: the cuts of the clusters it takes in, the pocketed strays, the loose
@@ -867,12 +878,38 @@ pool_result pool_link_step_event(pool_link *link, int i, double t) {
 		}
 		begin_segment(link, idx[k], &s[k], t);
 	}
-	const pool_result rec = record(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
-	link->world.changed(link->world.ctx, idx, m, t);
-	return rec;
+	return record_changed(link, t, POOL_EVENT_LINK_STEP, POOL_POCKET_NONE, idx, m);
 }
 
-// A contact inside cluster c (two of its balls, or one and a rail's nose, touching) closing
+// A ball within touch of the cushion and driven into it faster than the cluster's own forces close
+// a contact. With pockets "jaws" the cushion is the nose curve, each part whose span the centre
+// faces (the parts the step's contacts are, link_step.c): a ball over a mouth has no rail to be
+// driven into, and one against a facing or jaw is driven along that part's normal. The other
+// models keep the four rails' contact lines.
+static int driven_into_cushion(const pool_link *link, const pool_ball_state *s) {
+	const pool_table_shape *shape = link->ws.shape;
+	if (shape && shape->table.pockets == POOL_POCKETS_JAWS) {
+		const double R = link->def->params.ball_radius;
+		for (int k = 0; k < shape->n_parts; ++k) {
+			if (!pool_shape_in_span(shape, k, s->pos))
+				continue;
+			const double gap = pool_v3_len(pool_v3_sub(s->pos, pool_shape_nearest(shape, k, s->pos))) - R;
+			if (gap <= POOL_LINK_TOUCH_GAP &&
+			    -pool_v3_dot(s->vel, pool_shape_normal(shape, k, s->pos)) > POOL_LINK_IMPACT_SPEED)
+				return 1;
+		}
+		return 0;
+	}
+	pool_rail rails[4];
+	pool_vec3 into[4];
+	const int near = pool_table_cushions_near(&link->def->table, link->dc, s->pos, POOL_LINK_TOUCH_GAP, rails, into);
+	for (int k = 0; k < near; ++k)
+		if (pool_v3_dot(s->vel, into[k]) > POOL_LINK_IMPACT_SPEED)
+			return 1;
+	return 0;
+}
+
+// A contact inside cluster c (two of its balls, or one and the cushion, touching) closing
 // faster than POOL_LINK_IMPACT_SPEED at t: a hit from outside passed on into the cluster.
 static int hit_inside(pool_link *link, int c, double t) {
 	const double reach = 2.0 * link->def->params.ball_radius + POOL_LINK_TOUCH_GAP;
@@ -889,12 +926,8 @@ static int hit_inside(pool_link *link, int c, double t) {
 			    pool_closing_speed(s[a].pos, s[a].vel, s[b].pos, s[b].vel) > POOL_LINK_IMPACT_SPEED)
 				return 1;
 		}
-		pool_rail rails[4];
-		pool_vec3 into[4];
-		const int near = pool_table_cushions_near(&link->def->table, link->dc, s[a].pos, POOL_LINK_TOUCH_GAP, rails, into);
-		for (int k = 0; k < near; ++k)
-			if (pool_v3_dot(s[a].vel, into[k]) > POOL_LINK_IMPACT_SPEED)
-				return 1;
+		if (driven_into_cushion(link, &s[a]))
+			return 1;
 	}
 	return 0;
 }
@@ -950,7 +983,7 @@ static int parting(const pool_ball_state *s) {
 
 int pool_link_take_pressed(pool_link *link, pool_event_type type, const int *inv, const pool_ball_state *s, int m,
                            double t, pool_result *result) {
-	if (!(type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pool_link_pressed_pair(link, s))))
+	if (!(type == POOL_EVENT_BALL_CUSHION || (type == POOL_EVENT_BALL_BALL && pressed_pair(link, s))))
 		return 0;
 	const int c0 = link->cluster_of[inv[0]];
 	if (c0 >= 0 && (m == 1 || c0 == link->cluster_of[inv[1]]))

@@ -107,9 +107,10 @@ typedef struct pool_link {
 	                           ///< nothing, and the shot stops (POOL_STOP_MAX_EVENTS)
 } pool_link;
 
-/// Binds LINK to its simulation's def (kept by address: the world's), allocator and world.
-void pool_link_init(pool_link *link, const pool_sim_def *def, double dc, const pool_allocator *alloc,
-                    const pool_link_world *world);
+/// Binds LINK to its simulation's def and table shape (kept by address: the world's; the
+/// shape's parts are the steps' cushion contacts with pockets "jaws"), allocator and world.
+void pool_link_init(pool_link *link, const pool_sim_def *def, const struct pool_table_shape *shape, double dc,
+                    const pool_allocator *alloc, const pool_link_world *world);
 
 /// A new shot: no ball, no cluster, no warm start (the same input gives the same bits).
 void pool_link_clear(pool_link *link);
@@ -137,12 +138,6 @@ pool_result pool_link_cut(pool_link *link, const int *inv, int m, double t);
 /// 1 when LINK found no room for an event it needed under max_events (it then did nothing):
 /// the shot stops there.
 static inline int pool_link_starved(const pool_link *link) { return link->starved; }
-
-/// 1 when two touching balls s[0..2) (closed-form states at the contact) are pressed together:
-/// their normal approach acceleration, the difference of their free accelerations (a linked
-/// ball's: as if released, gravity above the cloth) along the normal less the curvature of
-/// their relative path (|v_t|^2 / 2R parts them), is positive.
-int pool_link_pressed_pair(const pool_link *link, const pool_ball_state *s);
 
 /// An event of the balls inv[0..m) (evolved to t, in s[0..m)) found them touching and pressed,
 /// and Petit's law gave no impulse: resting contact the impulses cannot hold. Returns 1 when

@@ -23,8 +23,9 @@ typedef enum link_kind { LINK_BALL = 0, LINK_CLOTH = 1, LINK_CUSHION = 2 } link_
 typedef struct link_contact {
 	link_kind kind;
 	int a, b;         ///< ball indices; b = -1 for the cloth and the cushions
-	int rail;         ///< pool_rail of a cushion contact, else POOL_RAIL_NONE
-	int piece;        ///< which piece of the rail's nose (geometry.h), else 0
+	int cushion;      ///< which cushion, for the warm start: the rail + 4 times the piece of its
+	                  ///< nose (geometry.h), or with pockets "jaws" 4 + the part of the nose curve;
+	                  ///< -1 for the cloth and ball pairs
 	pool_vec3 n;      ///< unit normal, towards ball a
 	pool_vec3 ra, rb; ///< from each centre to the contact point
 	double gap;       ///< m, distance between the surfaces (< 0: penetration)

@@ -110,6 +110,26 @@ static pool_vec3 centre(const link_scene *sc, int k) {
 	return p;
 }
 
+// Contact `count` of ball a (out[count] when out is not NULL) against ball b (-1: the cloth or a
+// cushion, `cushion` its id), along the unit normal n towards a; returns count + 1.
+static int put_contact(link_contact *out, int count, link_kind kind, int a, int b, int cushion, pool_vec3 n, double R,
+                       double gap, double mu) {
+	if (out) {
+		POOL_ASSERT(fabs(pool_v3_len(n) - 1.0) < 1e-12); // a unit normal
+		link_contact *c = &out[count];
+		c->kind = kind;
+		c->a = a;
+		c->b = b;
+		c->cushion = cushion;
+		c->n = n;
+		c->ra = kind == LINK_CLOTH ? pool_v3(0.0, 0.0, -R) : pool_v3_scale(n, -R); // (no -0.0 on the cloth)
+		c->rb = b >= 0 ? pool_v3_scale(n, R) : pool_v3(0.0, 0.0, 0.0);
+		c->gap = gap;
+		c->mu = mu;
+	}
+	return count + 1;
+}
+
 // Finds the contacts (into out when not NULL) and returns their count; the same order every
 // time: per ball its cloth contact, its cushions by rail, then its pairs with later balls.
 static int find_contacts(const link_scene *sc, link_contact *out) {
@@ -121,22 +141,8 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 		const pool_vec3 pa = centre(sc, a);
 		// Cloth: the plane z = 0; planar mode keeps every ball on it at gap 0.
 		const double cloth_gap = sc->planar ? 0.0 : pa.z - R;
-		if (sc->planar || cloth_gap < sc->reach + POOL_LINK_MARGIN) {
-			if (out) {
-				link_contact *c = &out[count];
-				c->kind = LINK_CLOTH;
-				c->a = a;
-				c->b = -1;
-				c->rail = POOL_RAIL_NONE;
-				c->piece = 0;
-				c->n = pool_v3(0.0, 0.0, 1.0);
-				c->ra = pool_v3(0.0, 0.0, -R);
-				c->rb = pool_v3(0.0, 0.0, 0.0);
-				c->gap = cloth_gap;
-				c->mu = p->mu_slide;
-			}
-			++count;
-		}
+		if (sc->planar || cloth_gap < sc->reach + POOL_LINK_MARGIN)
+			count = put_contact(out, count, LINK_CLOTH, a, -1, -1, pool_v3(0.0, 0.0, 1.0), R, cloth_gap, p->mu_slide);
 		// Pockets "jaws": each part of the nose curve whose span the centre faces (a facing, a
 		// jaw, a nose segment), its id for the warm start past the four rails'.
 		for (int k = 0; sc->shape && k < sc->shape->n_parts; ++k) {
@@ -144,23 +150,9 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				continue;
 			const pool_vec3 q = pool_shape_nearest(sc->shape, k, pa);
 			const double gap = pool_v3_len(pool_v3_sub(pa, q)) - R;
-			if (!(gap < sc->reach + POOL_LINK_MARGIN))
-				continue;
-			if (out) {
-				link_contact *c = &out[count];
-				c->kind = LINK_CUSHION;
-				c->a = a;
-				c->b = -1;
-				c->rail = 4 + k;
-				c->piece = 0;
-				c->n = pool_shape_normal(sc->shape, k, pa);
-				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12); // a unit normal
-				c->ra = pool_v3_scale(c->n, -R);
-				c->rb = pool_v3(0.0, 0.0, 0.0);
-				c->gap = gap;
-				c->mu = p->mu_cushion;
-			}
-			++count;
+			if (gap < sc->reach + POOL_LINK_MARGIN)
+				count = put_contact(out, count, LINK_CUSHION, a, -1, 4 + k, pool_shape_normal(sc->shape, k, pa), R, gap,
+				                    p->mu_cushion);
 		}
 		for (int rail = POOL_RAIL_SOUTH; !sc->shape && rail <= POOL_RAIL_EAST; ++rail) {
 			// The nose: its line, ending at the pocket mouths (over a mouth there is no nose but its
@@ -174,23 +166,9 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				const pool_vec3 d = pool_v3_sub(pa, nose[k]);
 				const double dist = pool_v3_len(d);
 				const double gap = dist - R;
-				if (!(gap < sc->reach + POOL_LINK_MARGIN) || !(dist > 0.0))
-					continue;
-				if (out) {
-					link_contact *c = &out[count];
-					c->kind = LINK_CUSHION;
-					c->a = a;
-					c->b = -1;
-					c->rail = rail;
-					c->piece = k;
-					c->n = pool_v3_scale(d, 1.0 / dist);
-					POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12); // a unit normal
-					c->ra = pool_v3_scale(c->n, -R);
-					c->rb = pool_v3(0.0, 0.0, 0.0);
-					c->gap = gap;
-					c->mu = p->mu_cushion;
-				}
-				++count;
+				if (gap < sc->reach + POOL_LINK_MARGIN && dist > 0.0)
+					count = put_contact(out, count, LINK_CUSHION, a, -1, rail + 4 * k, pool_v3_scale(d, 1.0 / dist), R, gap,
+					                    p->mu_cushion);
 			}
 		}
 		for (int b = a + 1; b < sc->n; ++b) {
@@ -198,23 +176,8 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 			const double dist = pool_v3_len(d);
 			const double gap = dist - 2.0 * R;
 			// Two balls close at up to twice the speed bound.
-			if (!(gap < 2.0 * sc->reach + POOL_LINK_MARGIN) || !(dist > 0.0))
-				continue;
-			if (out) {
-				link_contact *c = &out[count];
-				c->kind = LINK_BALL;
-				c->a = a;
-				c->b = b;
-				c->rail = POOL_RAIL_NONE;
-				c->piece = 0;
-				c->n = pool_v3_scale(d, 1.0 / dist);
-				POOL_ASSERT(fabs(pool_v3_len(c->n) - 1.0) < 1e-12);
-				c->ra = pool_v3_scale(c->n, -R);
-				c->rb = pool_v3_scale(c->n, R);
-				c->gap = gap;
-				c->mu = p->mu_ball;
-			}
-			++count;
+			if (gap < 2.0 * sc->reach + POOL_LINK_MARGIN && dist > 0.0)
+				count = put_contact(out, count, LINK_BALL, a, b, -1, pool_v3_scale(d, 1.0 / dist), R, gap, p->mu_ball);
 		}
 	}
 	return count;

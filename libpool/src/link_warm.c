@@ -12,11 +12,9 @@
 /// entry as zero (the basis is then singular and Lemke solves the step), Lemke's own rule.
 #define POOL_LINK_SINGULAR_REL 1e-14
 
-/// Who contact c is between (link_basis.h): its kind, the ball ids, the rail of a cushion (and
-/// the piece of its nose: rail + 4 piece).
+/// Who contact c is between (link_basis.h): its kind, the ball ids, which cushion.
 static pool_link_contact_id contact_id(const link_contact *c, const pool_ball_state *s) {
-	const pool_link_contact_id id = {(int32_t)c->kind, s[c->a].id,
-	                                 c->kind == LINK_BALL ? s[c->b].id : (int32_t)(c->rail + 4 * c->piece)};
+	const pool_link_contact_id id = {(int32_t)c->kind, s[c->a].id, c->kind == LINK_BALL ? s[c->b].id : (int32_t)c->cushion};
 	return id;
 }
 

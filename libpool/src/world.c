@@ -117,15 +117,16 @@ static void link_changed(void *ctx, const int *balls, int m, double t) { pool_sc
 // room first (pool_sim_step for an event and the LINK events it brings); should that fall short
 // and the history not grow, the shot fails rather than write past its arrays.
 static pool_result record(pool_sim *sim, double t, pool_event_type type, pool_rail rail, pool_pocket pocket,
-                          const int *balls, int m) {
-	const pool_result r = pool_history_record(&sim->history, &sim->alloc, t, type, rail, pocket, balls, m, sim->cur);
+                          pool_cushion_part part, const int *balls, int m) {
+	const pool_result r =
+	    pool_history_record(&sim->history, &sim->alloc, t, type, rail, pocket, part, balls, m, sim->cur);
 	if (r)
 		sim->failed = r;
 	return r;
 }
 
 static pool_result link_record(void *ctx, double t, pool_event_type type, pool_pocket pocket, const int *balls, int m) {
-	return record(ctx, t, type, POOL_RAIL_NONE, pocket, balls, m);
+	return record(ctx, t, type, POOL_RAIL_NONE, pocket, POOL_PART_NONE, balls, m);
 }
 
 static pool_result link_reserve(void *ctx, int events, int states) {
@@ -141,7 +142,7 @@ static int link_room(void *ctx) {
 static void bind_link(pool_sim *sim) {
 	const pool_link_world world = {sim,         link_state_at, link_begin_segment, link_refresh,
 	                               link_changed, link_record,  link_reserve,       link_room};
-	pool_link_init(&sim->link, &sim->def, sim->dc, &sim->alloc, &world);
+	pool_link_init(&sim->link, &sim->def, &sim->shape, sim->dc, &sim->alloc, &world);
 }
 
 // ---- lifetime
@@ -166,9 +167,8 @@ static void set_def(pool_sim *sim, const pool_sim_def *def) {
 	sim->def = *def;
 	sim->def.allocator = keep; // buffers stay with the allocator that made them
 	sim->dc = pool_table_contact_distance(&def->table, def->params.ball_radius);
-	bind_link(sim);
 	(void)pool_table_shape_build(&def->table, def->params.ball_radius, &sim->shape, NULL); // validated
-	sim->link.ws.shape = &sim->shape; // LINK's cushion contacts are the nose curve's parts
+	bind_link(sim);
 }
 
 pool_result pool_sim_create(const pool_sim_def *def, pool_sim **out, pool_error *error) {
@@ -348,7 +348,7 @@ pool_result pool_sim_strike(pool_sim *sim, int32_t ball_id, const pool_strike *s
 	// ball into the cloth (v_z < 0): a ball_table impact at this very instant (jump and massé).
 	pool_motion_after_impulse(&sim->def, &s);
 	pool_schedule_begin_segment(sim, i, &s, now);
-	record(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, &i, 1);
+	record(sim, now, POOL_EVENT_STRIKE, POOL_RAIL_NONE, POOL_POCKET_NONE, POOL_PART_NONE, &i, 1);
 	sim->time = now;
 	sim->processed = now;
 	sim->started = 1;
@@ -465,10 +465,11 @@ static pool_result process(pool_sim *sim, int slot) {
 	sim->noop_streak = 0;
 	for (int k = 0; k < count; ++k)
 		pool_schedule_begin_segment(sim, inv[k], &s[k], now);
-	// A pocket event names its pocket, not the rail whose mouth it was.
-	record(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, inv, count);
-	if (type == POOL_EVENT_BALL_CUSHION && sim->history.n_events > 0 && ctx.part >= 0)
-		sim->history.events[sim->history.n_events - 1].part = sim->shape.parts[ctx.part].part;
+	// A pocket event names its pocket, not the rail whose mouth it was; a cushion event with
+	// pockets "jaws" or "none" the kind of the nose curve's part it touched.
+	const pool_cushion_part part =
+	    type == POOL_EVENT_BALL_CUSHION && ctx.part >= 0 ? sim->shape.parts[ctx.part].part : POOL_PART_NONE;
+	record(sim, now, type, type == POOL_EVENT_POCKET ? POOL_RAIL_NONE : ctx.rail, ctx.pocket, part, inv, count);
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
@@ -503,7 +504,8 @@ static int step(pool_sim *sim) {
 		return 0;
 	if (!sim->predicted)
 		pool_schedule_predict_all(sim);
-	const pool_event_key *top = sim->n > 0 ? &sim->keys[pool_event_queue_top(&sim->queue)] : NULL;
+	const int slot = sim->n > 0 ? pool_schedule_next(sim) : -1;
+	const pool_event_key *top = slot >= 0 ? &sim->keys[slot] : NULL;
 	if (!top || !isfinite(top->time)) {
 		// Nothing will happen again: no ball in the air, none moving (a flight always ends, and
 		// a prediction cut at max_time reports an event beyond it, pool_schedule_beyond).
@@ -538,7 +540,7 @@ static int step(pool_sim *sim) {
 	// never silently wrong velocities.
 	const int recorded = sim->history.n_events;
 	const double now = top->time;
-	const pool_result r = process(sim, pool_event_queue_top(&sim->queue));
+	const pool_result r = process(sim, slot);
 	if (pool_link_starved(&sim->link)) {
 		// LINK needed an event the limit has no room for and did nothing: the event limit cut
 		// the shot here (whatever comes next, even after max_time).
@@ -582,9 +584,9 @@ pool_result pool_sim_run_until(pool_sim *sim, double t) {
 			return POOL_OK;
 		if (!sim->predicted)
 			pool_schedule_predict_all(sim);
-		if (sim->n > 0 && sim->keys[pool_event_queue_top(&sim->queue)].time > t &&
-		    isfinite(sim->keys[pool_event_queue_top(&sim->queue)].time) &&
-		    sim->keys[pool_event_queue_top(&sim->queue)].time <= sim->def.max_time)
+		// The next event lies after t (and is one the shot will process): the states at t are known.
+		const double next = sim->n > 0 ? sim->keys[pool_schedule_next(sim)].time : INFINITY;
+		if (next > t && isfinite(next) && next <= sim->def.max_time)
 			break;
 		int r = pool_sim_step(sim);
 		if (r < 0)

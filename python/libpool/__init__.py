@@ -835,11 +835,14 @@ class Sim:
         return _unpack_balls(raw)
 
     def _time_message(self, name, t):
-        """Why pool_sim_state_at refused t (call with the lock held)."""
+        """Why pool_sim_state_at refused t, the argument named name (call with the lock held)."""
         if not (t >= 0.0):
             return f"{name}: must be a time >= 0 s, got {t!r}"
-        return (f"{name}: {t!r} s is beyond the processed time "
-                f"{_lib().pool_sim_time(self._p())!r} s (run the shot further first)")
+        # The library's pool_sim_last_error has the time processed (which a run_until may have
+        # taken past the last event); it names its own call and argument ("state_at: t = ...").
+        said = _lib().pool_sim_last_error(self._p()).decode("utf-8", "replace")
+        detail = said.split(": ", 1)[-1]
+        return f"{name} = {detail[4:] if detail.startswith('t = ') else detail}"
 
     def trajectory(self, times):
         """Every ball's exact state at each of the times (s), as NumPy arrays, in one C call

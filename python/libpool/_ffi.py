@@ -13,7 +13,7 @@ from ctypes import POINTER, c_bool, c_char, c_char_p, c_double, c_int, c_int32, 
 __all__ = [
     "Vec3", "TableDef", "Params", "BallState", "Strike", "Event", "Allocator", "Models", "SimDef",
     "Error",
-    "STRUCTS", "load", "library_path",
+    "STRUCTS", "load", "library_path", "companion_path", "Companion",
 ]
 
 
@@ -190,6 +190,66 @@ def library_path():
     if os.path.exists(built):
         return built
     return ctypes.util.find_library("pool")
+
+
+def companion_path(file_name, env, folder):
+    """Where a library of the project beside libpool is (libpool_games.so in games/,
+    libpool_scenario.so in scenario/): bundled next to this file (pip install ./python), else
+    $env, else beside the libpool.so in use when that is a build tree's (build/X/libpool/libpool.so
+    -> build/X/folder/file_name), else the repository's build/release tree, else the system's
+    library search. None when nothing is found."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    bundled = os.path.join(here, file_name)
+    if os.path.exists(bundled):
+        return bundled
+    if os.environ.get(env):
+        return os.environ[env]
+    pool = library_path()
+    if pool:
+        beside = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(pool))), folder,
+                              file_name)
+        if os.path.exists(beside):
+            return beside
+    built = os.path.join(os.path.dirname(os.path.dirname(here)), "build", "release", folder,
+                         file_name)
+    if os.path.exists(built):
+        return built
+    return ctypes.util.find_library(file_name[3:-3])  # libNAME.so -> NAME
+
+
+class Companion:
+    """A library of the project beside libpool (libpool_games.so, libpool_scenario.so): found by
+    companion_path, loaded on first use after libpool.so and the libraries it needs, with its
+    prototypes ({name: (restype, argtypes)}) set; once, safely from several threads."""
+
+    def __init__(self, file_name, env, folder, prototypes, needs=(), hint=""):
+        self.file_name, self.env, self.folder = file_name, env, folder
+        self.prototypes, self.needs, self.hint = prototypes, needs, hint
+        self._lib = None
+        self._lock = threading.Lock()
+
+    def path(self):
+        return companion_path(self.file_name, self.env, self.folder)
+
+    def load(self):
+        lib = self._lib
+        if lib is not None:
+            return lib
+        with self._lock:
+            if self._lib is None:
+                load()  # libpool.so first, then what this one needs: it links them
+                for library in self.needs:
+                    library.load()
+                path = self.path()
+                if path is None:
+                    raise OSError(f"{self.file_name} not found: set {self.env}, build the repository "
+                                  f"into build/release, or pip install ./python{self.hint}")
+                lib = ctypes.CDLL(path)
+                for name, (restype, argtypes) in self.prototypes.items():
+                    fn = getattr(lib, name)
+                    fn.restype, fn.argtypes = restype, argtypes
+                self._lib = lib
+        return self._lib
 
 
 _lib = None

@@ -6,23 +6,25 @@ pool-batch, docs/commands.md). Needs NumPy.
                                           (0, 7.5, 1.0, 0.0, 0.0, -0.01)], workers=2)
     res.stop_reason, res.events, res.end_time, res.first_hit, res.pos, res.state, res.pocketed
 
-Each worker thread owns one C simulation, reset for every shot it takes; pool_sim_run is called
-without the GIL, so the threads simulate in parallel. Every shot depends only on the layout and
-its strike, so the arrays are identical whatever `workers` is, and each row holds exactly the
+The layout is read by libpool_scenario's parser and every shot is libpool_scenario's batch shot
+(pool/batch.h), the very code pool-sim and pool-batch run: the same fields, ranges and messages,
+the same shots. Each worker thread owns one C simulation and hands it chunks of strikes; the C
+call releases the GIL, so the threads simulate in parallel. Every shot depends only on the layout
+and its strike, so the arrays are identical whatever `workers` is, and each row holds exactly the
 values of pool-batch's row for the same layout and strike.
 """
 
+import ctypes
 import json
 import math
 import os
-import struct
 import threading
-from ctypes import PyDLL, byref, c_double, c_int, c_int32, c_void_p, string_at
+from ctypes import POINTER, byref, c_void_p, cast, create_string_buffer
 
 import numpy as np
 
-from . import MODEL_KINDS, PoolError, _ffi, _model_set, _model_value, model_names
-from ._ffi import BallState as CBallState, Error as CError, SimDef, Strike
+from . import PoolError, _ffi, _scenario
+from ._ffi import BallState as CBallState, SimDef
 
 __all__ = ["run", "BatchResult", "load_layout", "Layout", "STOP_ERROR", "STOP_NAMES",
            "MOTION_NAMES", "NO_HIT", "STRIKE_FIELDS"]
@@ -37,22 +39,11 @@ MOTION_NAMES = {0: "stationary", 1: "spinning", 2: "sliding", 3: "rolling", 4: "
 NO_HIT = -(2 ** 31) - 1
 STRIKE_FIELDS = ("ball", "speed", "phi", "theta", "a", "b")
 
-_PI = 3.14159265358979323846
-_DEG = _PI / 180.0  # as the scenario parser and pool-batch convert degrees
-_MAX_ABS = 1e9      # the scenario parser's and pool-batch's limit on numbers
-_EV_BALL_BALL, _EV_LINK_BEGIN = 4, 9
+_MAX_ABS = 1e9  # POOL_SCENARIO_MAX_ABS: the scenario parser's and pool-batch's limit on numbers
 _MOTION_POCKETED, _MOTION_OFF_TABLE = 6, 7
-_ERR_OUT_OF_MEMORY, _ERR_INTERNAL = -3, -11
-_FORMAT = "libpool-scenario/1"
-_BALL_SIZE = struct.calcsize("=ii9d")
-_EVENT_SIZE = 32
-_ID = struct.Struct("=i")
 BALL_DTYPE = np.dtype([("id", "<i4"), ("motion", "<i4"), ("pos", "<f8", 3), ("vel", "<f8", 3),
                        ("omega", "<f8", 3)])
-assert BALL_DTYPE.itemsize == _BALL_SIZE == 80
-_STRIKE_DTYPE = np.dtype([("speed", "<f8"), ("phi", "<f8"), ("theta", "<f8"), ("a", "<f8"),
-                          ("b", "<f8")])
-assert _STRIKE_DTYPE.itemsize == 40
+assert BALL_DTYPE.itemsize == 80
 
 
 # ---- the layout: a libpool-scenario/1 document ------------------------------------------------
@@ -74,102 +65,37 @@ class Layout:
         return [b.id for b in self.balls]
 
 
-def _fail(message):
-    raise ValueError("layout: " + message)
-
-
-def _reject_duplicates(pairs):
-    out = {}
-    for k, v in pairs:
-        if k in out:
-            raise ValueError(f"layout: (document): duplicate object key {k!r}")
-        out[k] = v
-    return out
-
-
-def _reject_constant(name):
-    raise ValueError(f"layout: (document): {name} is not valid JSON")
-
-
-def _is_number(v):
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
-
-
-def _number(v, path):
-    if not _is_number(v):
-        _fail(f"{path}: must be a number")
-    x = float(v)
-    if not math.isfinite(x):
-        _fail(f"{path}: must be a finite number")
-    if abs(x) > _MAX_ABS:
-        _fail(f"{path}: {x:g} is too large (limit {_MAX_ABS:g})")
-    return x
-
-
-def _integer(v, path, lo, hi):
-    if not isinstance(v, int) or isinstance(v, bool):
-        _fail(f"{path}: must be an integer")
-    if not lo <= v <= hi:
-        _fail(f"{path}: {v} is out of range [{lo}, {hi}]")
-    return v
-
-
-def _fields(obj, path, allowed):
-    for k in obj:
-        if k not in allowed:
-            if not k:
-                _fail(f"{path or '(document)'}: unknown field \"\"")
-            _fail(f"{path}.{k}: unknown field" if path else f"{k}: unknown field")
-
-
-def _vec(v, path, min_n, start):
-    if not isinstance(v, list) or not min_n <= len(v) <= 3:
-        _fail(f"{path}: must be an array of 3 numbers" if min_n == 3
-              else f"{path}: must be an array of {min_n} or 3 numbers")
-    c = list(start)
-    for i, x in enumerate(v):
-        c[i] = _number(x, f"{path}[{i}]")
-    return c
-
-
-def _lib_message(path, code, err):
-    """The scenario parser's fail_lib: the library's message, prefixed with path unless it
-    already names a field."""
-    message = err.message.decode("utf-8", "replace") if err.message else ""
-    if not message:
-        message = _ffi.load().pool_result_str(code).decode()
-    for root in (path, "table", "params", "balls", "strike", "options", "models"):
-        if message.startswith(root) and message[len(root):len(root) + 1] in (".", ":", "["):
-            return message
-    return f"{path}: {message}"
-
-
-def _set_models(d, name, path):
-    """Sets d.models to the model set `name` (the library's), or fails naming `path`."""
-    try:
-        d.models = _model_set(name, path)
-    except PoolError as e:
-        _fail(e.message)
-
-
-def _derive_motion(pos, vel, omega, r):
-    if pos[2] > r + 1e-9 or vel[2] != 0.0:
-        return 4
-    ux, uy = vel[0] - r * omega[1], vel[1] + r * omega[0]
-    if ux != 0.0 or uy != 0.0:
-        return 2
-    if vel[0] != 0.0 or vel[1] != 0.0:
-        return 3
-    if omega[2] != 0.0:
-        return 1
-    return 0
+def _json_value_problem(v, path):
+    """What JSON cannot carry in a layout dict, as the parser would name it ("balls[0].pos[1]:
+    must be a finite number"), or None. JSON has no NaN or infinity, and json.dumps knows only
+    its own types."""
+    if isinstance(v, dict):
+        for k, x in v.items():
+            problem = _json_value_problem(x, f"{path}.{k}" if path else str(k))
+            if problem:
+                return problem
+    elif isinstance(v, (list, tuple)):
+        for i, x in enumerate(v):
+            problem = _json_value_problem(x, f"{path}[{i}]")
+            if problem:
+                return problem
+    elif isinstance(v, float) and not math.isfinite(v):
+        return f"{path}: must be a finite number"
+    elif not (v is None or isinstance(v, (str, int, float))):
+        return f"{path}: must be a JSON value (a number, string, boolean, array or object), got " \
+               f"{type(v).__name__}"
+    return None
 
 
 def layout_text(layout):
     """The JSON text of a layout given as a path (str or os.PathLike), JSON text (a str or bytes
-    whose first non-blank character is "{") or a dict; TypeError for anything else."""
+    whose first non-blank character is "{") or a dict; TypeError for anything else, ValueError
+    for a dict holding what JSON cannot (NaN, objects that are no JSON values)."""
     if isinstance(layout, dict):
-        return json.dumps(layout)
+        problem = _json_value_problem(layout, "")
+        if problem:
+            raise ValueError("layout: " + problem)
+        return json.dumps(layout, allow_nan=False)
     if isinstance(layout, (bytes, bytearray)):
         return layout.decode("utf-8")
     if isinstance(layout, str) and layout.lstrip().startswith("{"):
@@ -181,327 +107,29 @@ def layout_text(layout):
                     f"{type(layout).__name__}")
 
 
-# The table's numeric fields of a scenario (docs/interfaces.md): cut angles in degrees.
-_TABLE_NUMBERS = ("length", "width", "cushion_height", "corner_mouth", "side_mouth",
-                  "corner_cut_angle", "side_cut_angle", "corner_jaw_radius", "side_jaw_radius",
-                  "corner_shelf", "side_shelf", "corner_hole_radius", "side_hole_radius")
-
-
 def load_layout(layout):
     """A Layout from a path (str or os.PathLike), JSON text (a str whose first non-blank character
-    is "{") or an already parsed dict, by the rules of pool-sim's scenario parser (the same
-    fields, ranges and library checks). Raises ValueError naming the field."""
+    is "{") or an already parsed dict, read by pool-sim's own scenario parser (libpool_scenario:
+    the same fields, ranges, library checks and messages). Raises ValueError naming the field."""
     if isinstance(layout, Layout):
         return layout
-    text = layout_text(layout)
+    data = layout_text(layout).encode("utf-8", "surrogatepass")
+    lib = _scenario.load()
+    c = _scenario.CScenario()
+    err = create_string_buffer(_scenario.MESSAGE_SIZE)
+    if lib.pool_scenario_parse(data, len(data), byref(c), err, len(err)) != 0:
+        raise ValueError("layout: " + err.value.decode("utf-8", "replace"))
     try:
-        doc = json.loads(text, object_pairs_hook=_reject_duplicates, parse_constant=_reject_constant)
-    except json.JSONDecodeError as e:
-        _fail(f"(document): malformed JSON at line {e.lineno}, column {e.colno}: {e.msg}")
-    return _parse_document(doc)
-
-
-def _parse_document(doc):
-    lib = _ffi.load()
-    if not isinstance(doc, dict):
-        _fail("(document): must be a JSON object")
-    _fields(doc, "", ("format", "name", "description", "table", "params", "balls", "strike",
-                      "options", "models", "game"))
-    if "format" not in doc:
-        _fail(f'format: missing (expected "{_FORMAT}")')
-    if doc["format"] != _FORMAT:
-        _fail(f'format: expected "{_FORMAT}"')
-    for k in ("name", "description"):
-        if k in doc and not isinstance(doc[k], str):
-            _fail(f"{k}: must be a string")
-    d = lib.pool_default_sim_def()
-    err = CError()
-    # table (a preset's balls and cloth become the params' defaults, as in pool-sim)
-    t = doc.get("table")
-    preset = None
-    presets = "wpa-9ft, wpa-8ft, wpa-7ft, snooker, carom"
-    if isinstance(t, str):  # "table": "wpa-8ft" is short for {"preset": "wpa-8ft"}
-        if "\0" in t or lib.pool_table_preset(t.encode(), byref(d.table)) != 0:
-            _fail(f'table: unknown preset "{t}" ({presets})')
-        preset, t = t, None
-    if t is not None:
-        if not isinstance(t, dict):
-            _fail("table: must be a preset name or an object")
-        _fields(t, "table", ("preset",) + _TABLE_NUMBERS + ("pockets",))
-        if "preset" in t:
-            if not isinstance(t["preset"], str):
-                _fail("table.preset: must be a string")
-            if "\0" in t["preset"] or lib.pool_table_preset(t["preset"].encode(),
-                                                             byref(d.table)) != 0:
-                _fail(f'table.preset: unknown preset "{t["preset"]}" ({presets})')
-            preset = t["preset"]
-        if "pockets" in t:
-            if t["pockets"] not in ("mouth_lines", "jaws", "none"):
-                _fail('table.pockets: must be "jaws", "mouth_lines" or "none"')
-            d.table.pockets = ("mouth_lines", "jaws", "none").index(t["pockets"])
-        for k in _TABLE_NUMBERS:
-            if k in t:
-                v = _number(t[k], f"table.{k}")
-                setattr(d.table, k, v * (math.pi / 180.0) if k.endswith("cut_angle") else v)
-        r = lib.pool_table_def_validate(byref(d.table), byref(err))
-        if r != 0:
-            _fail(_lib_message("table", r, err))
-    if preset is not None:
-        lib.pool_params_preset(preset.encode(), byref(d.params))
-    # params
-    p = doc.get("params")
-    if p is not None:
-        if not isinstance(p, dict):
-            _fail("params: must be an object")
-        names = [n for n, _ in _ffi.Params._fields_]
-        for k, v in p.items():
-            if k not in names:
-                _fail('params: unknown field ""' if not k else f"params.{k}: unknown field")
-            setattr(d.params, k, _number(v, f"params.{k}"))
-        r = lib.pool_params_validate(byref(d.params), byref(err))
-        if r != 0:
-            _fail(_lib_message("params", r, err))
-    # options
-    o = doc.get("options")
-    if o is not None:
-        if not isinstance(o, dict):
-            _fail("options: must be an object")
-        _fields(o, "options", ("airborne", "max_time", "max_events"))
-        if "airborne" in o:
-            if not isinstance(o["airborne"], bool):
-                _fail("options.airborne: must be true or false")
-            d.airborne = o["airborne"]
-        if "max_time" in o:
-            d.max_time = _number(o["max_time"], "options.max_time")
-            if not d.max_time > 0.0:
-                _fail("options.max_time: must be > 0")
-        if "max_events" in o:
-            d.max_events = _integer(o["max_events"], "options.max_events", 1, 2 ** 31 - 1)
-    # models: a set's name, or an object whose "set" each kind overrides by a name the library
-    # knows (the parser's parse_models)
-    m = doc.get("models")
-    if m is not None:
-        if isinstance(m, str):
-            _set_models(d, m, "models")
-            m = {}
-        if not isinstance(m, dict):
-            _fail("models: must be a model set name or an object")
-        _fields(m, "models", ("set",) + MODEL_KINDS)
-        if "set" in m:
-            _set_models(d, m["set"], "models.set")
-        for kind in MODEL_KINDS:
-            if kind not in m:
-                continue
-            if not isinstance(m[kind], str):
-                _fail(f"models.{kind}: must be a string")
-            value = _model_value(kind, m[kind])
-            if value is None:
-                _fail(f'models.{kind}: unknown model "{m[kind]}" ({", ".join(model_names(kind))})')
-            setattr(d.models, kind, value)
-    # balls
-    if "balls" not in doc:
-        _fail("balls: missing")
-    balls_doc = doc["balls"]
-    if not isinstance(balls_doc, list) or not balls_doc:
-        _fail("balls: must be a non-empty array")
-    if len(balls_doc) > 10000:
-        _fail("balls: too many balls (limit 10000)")
-    radius = d.params.ball_radius
-    balls = []
-    for i, b in enumerate(balls_doc):
-        path = f"balls[{i}]"
-        if not isinstance(b, dict):
-            _fail(f"{path}: must be an object")
-        _fields(b, path, ("id", "pos", "vel", "omega"))
-        if "id" not in b:
-            _fail(f"{path}.id: missing")
-        bid = _integer(b["id"], f"{path}.id", -2 ** 31, 2 ** 31 - 1)
-        if "pos" not in b:
-            _fail(f"{path}.pos: missing")
-        pos = _vec(b["pos"], f"{path}.pos", 2, (0.0, 0.0, radius))
-        vel = _vec(b["vel"], f"{path}.vel", 2, (0.0, 0.0, 0.0)) if "vel" in b else [0.0] * 3
-        omega = _vec(b["omega"], f"{path}.omega", 3, (0.0, 0.0, 0.0)) if "omega" in b else [0.0] * 3
-        s = CBallState(bid, _derive_motion(pos, vel, omega, radius), _ffi.Vec3(*pos),
-                       _ffi.Vec3(*vel), _ffi.Vec3(*omega))
-        balls.append(s)
-    # strike (the base strike), degrees kept as written
-    strike_ball, strike = None, None
-    s = doc.get("strike")
-    if s is not None:
-        if not isinstance(s, dict):
-            _fail("strike: must be an object")
-        _fields(s, "strike", STRIKE_FIELDS)
-        if "ball" not in s:
-            _fail("strike.ball: missing")
-        strike_ball = _integer(s["ball"], "strike.ball", -2 ** 31, 2 ** 31 - 1)
-        if strike_ball not in [b.id for b in balls]:
-            _fail(f"strike.ball: no ball has id {strike_ball}")
-        if "speed" not in s:
-            _fail("strike.speed: missing")
-        speed = _number(s["speed"], "strike.speed")
-        rest = []
-        for k in ("phi", "theta", "a", "b"):
-            x = _number(s[k], f"strike.{k}") if k in s else 0.0
-            if k == "theta" and not (0.0 <= x < 90.0):
-                _fail("strike.theta: must be in [0, 90) degrees")
-            rest.append(x)
-        strike = (speed, *rest)
-    layout = Layout(d, balls, strike_ball, strike, _parse_game(doc.get("game"), balls, strike))
-    if d.airborne:
-        _check_airborne(layout)
-    else:
-        _check_with_sim(layout)
-    return layout
-
-
-def _parse_game(game_doc, balls, strike):
-    """The scenario parser's parse_game: rules and state, the balls a table of those rules, and
-    a strike for the rules to judge."""
-    if game_doc is None:
-        return None
-    from . import game
-    if not isinstance(game_doc, dict):
-        _fail('game: must be an object ("rules", "state")')
-    _fields(game_doc, "game", ("rules", "state"))
-    if "rules" not in game_doc:
-        _fail("game.rules: missing (8ball, 9ball, three_cushion)")
-    rules = game_doc["rules"]
-    if not isinstance(rules, str):
-        _fail("game.rules: must be a string (8ball, 9ball, three_cushion)")
-    if rules not in game.RULES:
-        _fail(f'game.rules: unknown rules "{rules}" (8ball, 9ball, three_cushion)')
-    try:
-        state = game.State.from_dict(rules, game_doc.get("state"))
-    except ValueError as e:
-        _fail(str(e))
-    err = CError()
-    arr = (CBallState * max(len(balls), 1))(*balls)
-    c_state = state._to_c()
-    if game._load().pool_game_check_balls(byref(c_state), arr, len(balls), byref(err)) != 0:
-        _fail(err.message.decode("utf-8", "replace"))
-    if strike is None:
-        _fail("game: the rules judge a struck shot: the scenario needs a strike")
-    return state
-
-
-_TOUCH = 1e-9  # POOL_TOUCH_TOLERANCE
-_MAX_SPEED = 100.0  # POOL_MAX_SPEED
-
-
-def _strike_c(strike):
-    speed, phi, theta, a, b = strike
-    return Strike(speed, phi * _DEG, theta * _DEG, a, b)
-
-
-def _check_airborne(layout):
-    """The scenario parser's check_airborne: 3D positions (z >= R) and vertical velocities; the
-    library's planar rules on each ball's projection on the cloth; 3D overlaps; the struck ball
-    at rest on the cloth."""
-    lib = _ffi.load()
-    planar = SimDef.from_buffer_copy(layout.sim_def)
-    planar.airborne = False
-    err = CError()
-    sim = c_void_p()
-    r = lib.pool_sim_create(byref(planar), byref(sim), byref(err))
-    if r != 0:
-        _fail(_lib_message("options", r, err))
-    try:
-        radius = layout.sim_def.params.ball_radius
-        balls = layout.balls
-        for j, b in enumerate(balls):
-            if b.pos.z < radius - _TOUCH:
-                _fail(f"balls[{j}].pos: below the cloth (z = {b.pos.z:.9g} m, the centre of a "
-                      f"ball on the cloth is at z = R = {radius:.9g} m)")
-            if b.pos.z < radius:
-                b.pos.z = radius
-            v = b.vel
-            if math.sqrt(v.x * v.x + v.y * v.y + v.z * v.z) > _MAX_SPEED:
-                _fail(f"balls[{j}].vel: speed above the {_MAX_SPEED:g} m/s limit (POOL_MAX_SPEED)")
-            for i in range(j):
-                bi = balls[i]
-                if bi.id == b.id:
-                    _fail(f"balls[{j}].id: duplicate id {b.id} (also balls[{i}])")
-                dx, dy, dz = b.pos.x - bi.pos.x, b.pos.y - bi.pos.y, b.pos.z - bi.pos.z
-                depth = 2.0 * radius - math.sqrt(dx * dx + dy * dy + dz * dz)
-                if depth > _TOUCH:
-                    _fail(f"balls[{j}].pos: overlaps ball {bi.id} by {depth:.3g} m")
-            projected = CBallState.from_buffer_copy(b)
-            projected.pos.z = radius
-            projected.vel.z = 0.0
-            err = CError()
-            r = lib.pool_sim_reset(sim, byref(planar), byref(err))
-            if r == 0:
-                r = lib.pool_sim_add_ball(sim, byref(projected), byref(err))
-            if r != 0:
-                message = err.message.decode("utf-8", "replace")
-                if message.startswith("balls[0]"):
-                    _fail(f"balls[{j}]" + message[len("balls[0]"):])
-                _fail(_lib_message(f"balls[{j}]", r, err))
-            b.motion = _derive_motion((b.pos.x, b.pos.y, b.pos.z), tuple(b.vel), tuple(b.omega),
-                                      radius)
-        if layout.strike is not None:
-            b = next(x for x in balls if x.id == layout.strike_ball)
-            if b.pos.z > radius + _TOUCH or b.vel.z != 0.0:
-                _fail(f"strike.ball: ball {layout.strike_ball} must be at rest on the cloth to "
-                      "be struck")
-            projected = CBallState.from_buffer_copy(b)
-            projected.pos.z = radius
-            st = _strike_c(layout.strike)
-            err = CError()
-            r = lib.pool_sim_reset(sim, byref(planar), byref(err))
-            if r == 0:
-                r = lib.pool_sim_add_ball(sim, byref(projected), byref(err))
-            if r == 0:
-                vel, omega, err = _ffi.Vec3(), _ffi.Vec3(), CError()
-                r = lib.pool_strike_velocities(byref(layout.sim_def.params), byref(st),
-                                               byref(vel), byref(omega), byref(err))
-            if r == 0:
-                err = CError()
-                r = lib.pool_sim_strike(sim, layout.strike_ball, byref(st), byref(err))
-            if r != 0:
-                _fail(_lib_message("strike", r, err))
+        balls = [CBallState.from_buffer_copy(c.balls[i]) for i in range(c.ball_count)]
+        strike_ball, strike = None, None
+        if c.has_strike:
+            w = c.written
+            strike_ball, strike = c.strike_ball, (w.speed, w.phi, w.theta, w.a, w.b)
+        from . import game
+        state = game.State._from_c(c.game) if c.has_game else None
+        return Layout(SimDef.from_buffer_copy(c.sim_def), balls, strike_ball, strike, state)
     finally:
-        lib.pool_sim_destroy(sim)
-
-
-def _check_with_sim(layout):
-    """The library's own checks of the balls (and the base strike), as the parser makes them."""
-    lib = _ffi.load()
-    err = CError()
-    sim = c_void_p()
-    r = lib.pool_sim_create(byref(layout.sim_def), byref(sim), byref(err))
-    if r != 0:
-        _fail(_lib_message("options", r, err))
-    try:
-        radius = layout.sim_def.params.ball_radius
-        balls = layout.balls
-        for j, bj in enumerate(balls):
-            for i in range(j):
-                bi = balls[i]
-                if bi.id == bj.id:
-                    _fail(f"balls[{j}].id: duplicate id {bj.id} (also balls[{i}])")
-                dx, dy, dz = bj.pos.x - bi.pos.x, bj.pos.y - bi.pos.y, bj.pos.z - bi.pos.z
-                depth = 2.0 * radius - math.sqrt(dx * dx + dy * dy + dz * dz)
-                if depth > 1e-9:  # POOL_TOUCH_TOLERANCE
-                    _fail(f"balls[{j}].pos: overlaps ball {bi.id} by {depth:.3g} m")
-        for i, b in enumerate(balls):
-            err = CError()
-            r = lib.pool_sim_add_ball(sim, byref(b), byref(err))
-            if r != 0:
-                _fail(_lib_message(f"balls[{i}]", r, err))
-        if layout.strike is not None:
-            speed, phi, theta, a, b = layout.strike
-            st = Strike(speed, phi * _DEG, theta * _DEG, a, b)
-            vel, omega, err = _ffi.Vec3(), _ffi.Vec3(), CError()
-            r = lib.pool_strike_velocities(byref(layout.sim_def.params), byref(st), byref(vel),
-                                           byref(omega), byref(err))
-            if r == 0:
-                err = CError()
-                r = lib.pool_sim_strike(sim, layout.strike_ball, byref(st), byref(err))
-            if r != 0:
-                _fail(_lib_message("strike", r, err))
-    finally:
-        lib.pool_sim_destroy(sim)
+        lib.pool_scenario_free(byref(c))
 
 
 # ---- strikes ----------------------------------------------------------------------------------
@@ -607,39 +235,45 @@ class BatchResult:
         return f"BatchResult({len(self)} shots, {len(self.ball_ids)} balls)"
 
 
-_fast = None
-_fast_lock = threading.Lock()
 
 
-def _fast_functions():
-    """The short calls from a PyDLL handle: they keep the GIL (no hand-over between threads for
-    a call of a microsecond); pool_sim_run from the binding's CDLL handle, which releases it."""
-    global _fast
-    if _fast is None:
-        with _fast_lock:
-            if _fast is None:
-                cdll = _ffi.load()
-                py = PyDLL(_ffi.library_path())
-                fns = {}
-                for name in ("pool_sim_reset", "pool_sim_add_ball", "pool_sim_strike",
-                             "pool_sim_events", "pool_sim_event_states", "pool_sim_end_time",
-                             "pool_sim_stop_reason", "pool_sim_state_at", "pool_sim_time"):
-                    f = getattr(py, name)
-                    restype, _ = _ffi._PROTOTYPES[name]
-                    f.restype = restype if name not in ("pool_sim_events",
-                                                        "pool_sim_event_states") else c_void_p
-                    f.argtypes = None  # arguments are passed as ready ctypes objects
-                    fns[name] = f
-                fns["pool_sim_run"] = cdll.pool_sim_run
-                _fast = fns
-    return _fast
+def _c_layout(layout):
+    """The pool_scenario of a Layout for pool_batch_run, and the ball array it points to (keep
+    it alive as long as the scenario)."""
+    c = _scenario.CScenario()
+    c.sim_def = layout.sim_def
+    balls = (CBallState * max(1, len(layout.balls)))(*layout.balls)
+    c.ball_count = len(layout.balls)
+    c.balls = cast(balls, POINTER(CBallState))
+    if layout.game is not None:
+        c.has_game = True
+        c.game = layout.game._to_c()
+    return c, balls
+
+
+def _record_dtype():
+    """The fields of pool_batch_shot that fill the arrays, as a NumPy view of the C records."""
+    rec, verdict = _scenario.CBatchShot, _scenario.game.CResult
+    base = rec.game.offset
+    fields = {"result": ("<i4", rec.result.offset), "stop_reason": ("<i4", rec.stop_reason.offset),
+              "events": ("<i4", rec.events.offset), "end_time": ("<f8", rec.end_time.offset),
+              "hit": ("?", rec.hit.offset), "first_hit": ("<i4", rec.first_hit.offset),
+              "judged": ("?", rec.judged.offset), "legal": ("?", base + verdict.legal.offset),
+              "fouls": ("<u4", base + verdict.fouls.offset),
+              "outcome": ("<i4", base + verdict.outcome.offset),
+              "points": ("<i4", base + verdict.points.offset)}
+    return np.dtype({"names": list(fields), "formats": [f for f, _ in fields.values()],
+                     "offsets": [o for _, o in fields.values()], "itemsize": ctypes.sizeof(rec)})
+
+
+_RECORD = _record_dtype()
 
 
 class _Shots:
     """Output arrays and the shared claim counter."""
 
-    def __init__(self, n, m, chunk):
-        self.n, self.m, self.chunk = n, m, chunk
+    def __init__(self, n, m, chunk, game):
+        self.n, self.m, self.chunk, self.game = n, m, chunk, game
         self.stop = np.zeros(n, dtype=np.int8)
         self.events = np.zeros(n, dtype=np.int32)
         self.end_time = np.full(n, math.nan)
@@ -663,115 +297,58 @@ class _Shots:
             self.next = min(self.n, i + self.chunk)
             return i, self.next
 
+    def store(self, i0, records, messages, finals):
+        """Copies the records (a _RECORD view; messages: the C records) and final states of shots
+        i0.. into the output arrays."""
+        i1 = i0 + len(records)
+        ok = records["result"] == 0
+        self.stop[i0:i1] = np.where(ok, records["stop_reason"], STOP_ERROR)
+        self.events[i0:i1] = np.where(ok, records["events"], 0)
+        self.end_time[i0:i1] = np.where(ok, records["end_time"], math.nan)
+        # (int64 before the choice: NumPy 2 would cast NO_HIT to the records' int32.)
+        self.first_hit[i0:i1] = np.where(ok & records["hit"], records["first_hit"].astype(np.int64),
+                                         NO_HIT)
+        self.pos[i0:i1] = finals["pos"]
+        self.state[i0:i1] = finals["motion"]
+        for k in np.flatnonzero(~ok):
+            self.error[i0 + k] = messages[k].message.decode("utf-8", "replace")
+        if self.game:
+            judged = records["judged"]
+            self.legal[i0:i1] = np.where(judged, records["legal"].astype(np.int8), -1)
+            self.fouls[i0:i1] = np.where(judged, records["fouls"], 0)
+            self.outcome[i0:i1] = np.where(judged, records["outcome"], -1)
+            self.points[i0:i1] = np.where(judged, records["points"], 0)
 
-def _worker(layout, shots, ball, c_strikes, bad_theta, fns):
-    lib = _ffi.load()
-    err = CError()
+
+def _worker(c_layout, shots, strikes):
+    """Claims chunks of shots and runs each in one pool_batch_run call (without the GIL) on a
+    simulation of its own."""
+    lib = _scenario.load()
     sim = c_void_p()
+    records = (_scenario.CBatchShot * shots.chunk)()
+    finals = np.zeros((shots.chunk, shots.m), dtype=BALL_DTYPE)
+    finals_p = finals.ctypes.data_as(POINTER(CBallState))
+    record_view = np.frombuffer(records, dtype=_RECORD)
     try:
-        r = lib.pool_sim_create(byref(layout.sim_def), byref(sim), byref(err))
-        if r != 0:
-            raise PoolError(r, err.message.decode("utf-8", "replace"))
-        _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err)
+        while True:
+            span = shots.claim()
+            if span is None:
+                return
+            i0, i1 = span
+            done = lib.pool_batch_run(byref(c_layout), strikes[i0:i1].ctypes.data_as(
+                POINTER(_scenario.CBatchStrike)), i1 - i0, byref(sim), records, finals_p)
+            if done < i1 - i0 or records[done - 1].failed:
+                r = records[done - 1]
+                raise PoolError(r.result, f"shot {i0 + done - 1}: " +
+                                r.message.decode("utf-8", "replace"))
+            shots.store(i0, record_view[:done], records, finals[:done])
     except BaseException as e:  # reported by run(); stops the other workers too
         with shots.lock:
             if shots.failure is None:
                 shots.failure = e
     finally:
         if sim:
-            lib.pool_sim_destroy(sim)
-
-
-def _shoot(layout, shots, ball, c_strikes, bad_theta, fns, sim, err):
-    reset, add, strike = fns["pool_sim_reset"], fns["pool_sim_add_ball"], fns["pool_sim_strike"]
-    run_, events_, states_ = fns["pool_sim_run"], fns["pool_sim_events"], fns["pool_sim_event_states"]
-    end_time_, stop_, state_at_ = (fns["pool_sim_end_time"], fns["pool_sim_stop_reason"],
-                                   fns["pool_sim_state_at"])
-    time_ = fns["pool_sim_time"]
-    lib = _ffi.load()
-    m = shots.m
-    def_p = byref(layout.sim_def)
-    err_p = byref(err)
-    ball_ps = [byref(b) for b in layout.balls]
-    count = c_int()
-    count_p = byref(count)
-    strike_base = c_strikes.ctypes.data
-    # Final states of a chunk of shots, copied to the outputs once the chunk is done.
-    final = np.zeros((shots.chunk, m), dtype=BALL_DTYPE)
-    final_base = final.ctypes.data
-    final_pos, final_motion = final["pos"], final["motion"]
-    row_size = m * _BALL_SIZE
-    ev_stop, ev_events, ev_end, ev_hit, errors = (shots.stop, shots.events, shots.end_time,
-                                                  shots.first_hit, shots.error)
-    balls_list = ball.tolist()
-    bad_list = bad_theta.tolist()
-    while True:
-        span = shots.claim()
-        if span is None:
-            return
-        i0, i1 = span
-        for i in range(i0, i1):
-            b = balls_list[i]
-            if bad_list[i]:
-                ev_stop[i] = STOP_ERROR
-                errors[i] = "strike.theta: must be in [0, 90) degrees"
-                continue
-            r = reset(sim, def_p, err_p)
-            if r == 0:
-                for bp in ball_ps:
-                    r = add(sim, bp, err_p)
-                    if r:
-                        break
-            if r == 0:
-                r = strike(sim, c_int32(b), c_void_p(strike_base + 40 * i), err_p)
-            if r != 0:
-                message = err.message.decode("utf-8", "replace") or \
-                    lib.pool_result_str(r).decode()
-                err.message = b""  # clean for the next shot (successful calls leave it alone)
-                if r in (_ERR_OUT_OF_MEMORY, _ERR_INTERNAL):
-                    raise PoolError(r, f"shot {i}: {message}")
-                ev_stop[i] = STOP_ERROR
-                errors[i] = message if message.startswith("strike") else "strike: " + message
-                continue
-            r = run_(sim)
-            t_end = end_time_(sim)
-            if r == 0:
-                r = state_at_(sim, c_double(t_end), c_void_p(final_base + row_size * (i - i0)))
-            if r != 0:
-                raise PoolError(r, "shot %d: simulation failed at t = %.17g s: %s" % (
-                    i, time_(sim), lib.pool_sim_last_error(sim).decode("utf-8", "replace")))
-            ev_stop[i] = stop_(sim)
-            ev_end[i] = t_end
-            if layout.game is not None:
-                from . import game
-                g = game.judge_shot(sim, layout.sim_def.table, layout.game, lib)
-                shots.legal[i] = g.legal
-                shots.fouls[i] = sum(1 << game.FOULS.index(f) for f in g.fouls)
-                shots.outcome[i] = game.OUTCOMES.index(g.outcome)
-                shots.points[i] = g.points
-            evs = events_(sim, count_p)
-            n = count.value
-            ev_events[i] = n
-            # First ball the struck ball hits: the first ball_ball or link_begin event whose
-            # balls include it (pool-batch's first_hit).
-            if n:
-                raw = string_at(evs, n * _EVENT_SIZE)
-                types = memoryview(raw).cast("i")[2::8]
-                for k, ty in enumerate(types):
-                    if ty != _EV_BALL_BALL and ty != _EV_LINK_BEGIN:
-                        continue
-                    ev = c_void_p(evs + k * _EVENT_SIZE)
-                    nb = _ID.unpack_from(raw, k * _EVENT_SIZE + 20)[0]  # ball_count
-                    after = string_at(states_(sim, ev), nb * _BALL_SIZE)
-                    ids = [_ID.unpack_from(after, j * _BALL_SIZE)[0] for j in range(nb)]
-                    if b in ids:
-                        for x in ids:
-                            if x != b:
-                                ev_hit[i] = x
-                                break
-                        break
-        shots.pos[i0:i1] = final_pos[:i1 - i0]
-        shots.state[i0:i1] = final_motion[:i1 - i0]
+            _ffi.load().pool_sim_destroy(sim)
 
 
 def run(layout, strikes, workers=None, ball=None, chunk=64):
@@ -805,17 +382,13 @@ def run(layout, strikes, workers=None, ball=None, chunk=64):
     if workers < 1:
         raise ValueError("workers: must be >= 1")
     workers = max(1, min(workers, n))
-    c_strikes = np.empty(n, dtype=_STRIKE_DTYPE)
-    c_strikes["speed"] = values[:, 0]
-    c_strikes["phi"] = values[:, 1] * _DEG
-    c_strikes["theta"] = values[:, 2] * _DEG
-    c_strikes["a"] = values[:, 3]
-    c_strikes["b"] = values[:, 4]
-    theta = values[:, 2]
-    bad_theta = ~((theta >= 0.0) & (theta < 90.0))
-    shots = _Shots(n, m, max(1, int(chunk)))
-    fns = _fast_functions()
-    args = (lay, shots, ball_col, c_strikes, bad_theta, fns)
+    c_strikes = np.empty(n, dtype=np.dtype(_scenario.CBatchStrike))
+    c_strikes["ball"] = ball_col
+    for j, k in enumerate(STRIKE_FIELDS[1:]):
+        c_strikes[k] = values[:, j]
+    c_layout, c_balls = _c_layout(lay)
+    shots = _Shots(n, m, max(1, int(chunk)), lay.game is not None)
+    args = (c_layout, shots, c_strikes)
     if workers == 1:
         _worker(*args)
     else:
@@ -825,6 +398,7 @@ def run(layout, strikes, workers=None, ball=None, chunk=64):
             t.start()
         for t in threads:
             t.join()
+    del c_balls  # the C layout pointed to it until here
     if shots.failure is not None:
         raise shots.failure
     refused = shots.stop == STOP_ERROR

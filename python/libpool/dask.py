@@ -22,7 +22,7 @@ from . import batch as _batch
 __all__ = ["run", "run_chunk", "DEFAULT_CHUNK_SIZE"]
 
 # Rows per task: at about 10^4 post-break shots/s per core a chunk of 1000 is 0.1 s of work,
-# well above Dask's per-task overhead (a few ms; tools/batch/bench_dask.py measures it).
+# well above Dask's per-task overhead (a few ms; bench/batch/bench_dask.py measures it).
 DEFAULT_CHUNK_SIZE = 1000
 
 # The per-shot arrays of BatchResult, concatenated along the shots.

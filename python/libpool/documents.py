@@ -1,27 +1,19 @@
 """A Sim as the documents the commands read and write (docs/interfaces.md): its layout as a
-libpool-scenario/1 dict, its shot as a libpool-result/1 dict (pool-sim's), and the result file
-written for pool-plot and pool-view.
+libpool-scenario/1 dict, its shot as a libpool-result/1 dict (pool-sim's own writer, from
+libpool_scenario), and the result file written for pool-plot and pool-view.
 """
+import ctypes
 import json
 import math
 import os
 import tempfile
 
-from . import (EVENT_TYPES, MOTION_NAMES, STOP_REASONS, PoolError, Sim, _ffi, _finite, _lib,
-               models_dict)
+from . import PoolError, Sim, _ffi, _finite, models_dict
 
 __all__ = ["layout", "result", "write_result", "sim_from_layout"]
 
 _TABLE_FIELDS = ("length", "width", "cushion_height", "corner_mouth", "side_mouth")
 _PARAM_FIELDS = tuple(n for n, _ in _ffi.Params._fields_)
-_RAILS = ("south", "north", "west", "east")
-_POCKETS = ("sw", "se", "nw", "ne", "s", "n")
-_MAX_SAMPLES = 20000  # as pool-sim: a longer grid widens dt
-
-
-def _state(b):
-    return {"id": b.id, "pos": list(b.pos), "vel": list(b.vel), "omega": list(b.omega),
-            "state": b.motion}
 
 
 _POCKETS_MODELS = ("mouth_lines", "jaws", "none")
@@ -92,85 +84,25 @@ def sim_from_layout(cls, source, strike=True):
     return sim
 
 
-def _samples(sim, events, end, dt):
-    """pool-sim --sample DT: the multiples of dt up to end plus every event time; per ball, the
-    inside of runs where it does not move dropped, ending where it leaves play."""
-    steps = math.floor(end / dt)
-    if steps > _MAX_SAMPLES:
-        dt = end / _MAX_SAMPLES
-        steps = _MAX_SAMPLES
-    rate = 1.0 / dt
-    whole = rate == math.floor(rate) and rate < 1e15
-    times = [(k / rate if whole else k * dt) for k in range(int(steps) + 1)]
-    times = [t for t in times if t <= end]
-    times += [e.time for e in events if 0.0 <= e.time <= end] + [end]
-    times = sorted(set(times))
-    traj = sim.trajectory(times)
-    pos, motion, ids = traj.pos, traj.motion, traj.ids
-    gone = {MOTION_NAMES.index("pocketed"), MOTION_NAMES.index("off_table")}
-    balls = []
-    n = len(times)
-    for b in range(len(ids)):
-        last = n - 1
-        for k in range(n):
-            if int(motion[k, b]) in gone:
-                last = k
-                break
-        keep = []
-        for k in range(last + 1):
-            if 0 < k < last:
-                same_prev = motion[k - 1, b] == motion[k, b] and (pos[k - 1, b] == pos[k, b]).all()
-                same_next = motion[k + 1, b] == motion[k, b] and (pos[k + 1, b] == pos[k, b]).all()
-                if same_prev and same_next:
-                    continue
-            keep.append(k)
-        balls.append({"id": int(ids[b]), "t": [times[k] for k in keep],
-                      "pos": [pos[k, b].tolist() for k in keep]})
-    return {"dt": dt, "balls": balls}
-
-
 def result(sim, sample_dt=None):
+    """pool-sim's result document of the simulation: written by the scenario library's writer
+    (pool_result_json, the one pool-sim calls), read back as a dict."""
     if sample_dt is not None:
         sample_dt = _finite(sample_dt, "sample_dt")
         if not sample_dt > 0.0:
             raise PoolError(-1, f"sample_dt: must be > 0 s, got {sample_dt!r}")
+    from . import _scenario
+    lib = _scenario.load()
     with sim.lock:
-        d, table, params = _definition(sim)
-        events = sim.events
-        end = sim.end_time
-        final = sim.state_at(end)
-        doc = {"format": "libpool-result/1", "table": table, "ball_radius": d.params.ball_radius,
-               "params": params}
-        doc["models"] = _models(d)
-        doc["initial"] = [_state(b) for b in sim.state_at(0.0)]
-        out_events = []
-        for e in events:
-            ev = {"t": e.time, "type": e.type, "balls": list(e.balls)}
-            if e.rail is not None:
-                ev["rail"] = e.rail
-            if e.part is not None:
-                ev["part"] = e.part
-            if e.pocket is not None:
-                ev["pocket"] = e.pocket
-            ev["after"] = [_state(b) for b in e.after]
-            out_events.append(ev)
-        doc["events"] = out_events
-        doc["final"] = [_state(b) for b in final]
-        counts = {}
-        for e in events:
-            counts[e.type] = counts.get(e.type, 0) + 1
-        stop = sim.stop_reason
-        doc["stats"] = {
-            "events": len(events), "sim_time": sim.time, "end_time": end,
-            "stop_reason": stop if stop is not None else STOP_REASONS[0],
-            "balls": len(final),
-            "event_counts": {t: counts[t] for t in EVENT_TYPES if t in counts},
-            "pocketed": [b.id for b in final if b.motion == "pocketed"],
-            "off_table": [b.id for b in final if b.motion == "off_table"],
-        }
-        if sample_dt is not None and final:
-            doc["samples"] = _samples(sim, events, end, sample_dt)
-    return doc
+        d = sim.definition
+        options = _scenario.CResultOptions(sample_dt or 0.0, False, ctypes.pointer(d), None)
+        text = lib.pool_result_json(sim._p(), ctypes.byref(options))
+    if not text:
+        raise MemoryError("result: out of memory writing the document")
+    try:
+        return json.loads(ctypes.string_at(text).decode("utf-8"))
+    finally:
+        lib.pool_scenario_text_free(text)
 
 
 def write_result(path, source, sample_dt=None, pretty=False):

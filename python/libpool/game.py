@@ -16,10 +16,7 @@ Result whose .state is the next shot's. Angles are degrees, as everywhere in thi
 """
 
 import ctypes
-import ctypes.util
 import math
-import os
-import threading
 from ctypes import POINTER, byref, c_bool, c_char, c_char_p, c_double, c_int, c_int32, c_uint32, c_uint64
 from dataclasses import dataclass, field, fields
 from typing import List, Optional, Tuple
@@ -103,52 +100,19 @@ _PROTOTYPES = {
 }
 
 
+LIBRARY = _ffi.Companion("libpool_games.so", "LIBPOOL_GAMES_PATH", "games", _PROTOTYPES)
+
+
 def library_path():
     """Where libpool_games.so is: bundled next to this file (pip install ./python), else
     $LIBPOOL_GAMES_PATH, else beside the libpool.so in use when that is a build tree's
     (build/X/libpool/libpool.so -> build/X/games/libpool_games.so), else the repository's
     build/release tree, else the system's library search."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    bundled = os.path.join(here, "libpool_games.so")
-    if os.path.exists(bundled):
-        return bundled
-    env = os.environ.get("LIBPOOL_GAMES_PATH")
-    if env:
-        return env
-    pool = _ffi.library_path()
-    if pool:
-        beside = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(pool))), "games",
-                              "libpool_games.so")
-        if os.path.exists(beside):
-            return beside
-    built = os.path.join(os.path.dirname(os.path.dirname(here)), "build", "release", "games",
-                         "libpool_games.so")
-    if os.path.exists(built):
-        return built
-    return ctypes.util.find_library("pool_games")
-
-
-_lib = None
-_lock = threading.Lock()
+    return LIBRARY.path()
 
 
 def _load():
-    global _lib
-    if _lib is not None:
-        return _lib
-    with _lock:
-        if _lib is None:
-            _ffi.load()  # libpool.so first: libpool_games.so needs it
-            path = library_path()
-            if path is None:
-                raise OSError("libpool_games.so not found: set LIBPOOL_GAMES_PATH, build the "
-                              "repository into build/release, or pip install ./python")
-            lib = ctypes.CDLL(path)
-            for name, (restype, argtypes) in _PROTOTYPES.items():
-                fn = getattr(lib, name)
-                fn.restype, fn.argtypes = restype, argtypes
-            _lib = lib
-    return _lib
+    return LIBRARY.load()
 
 
 def _fail(code, err):
@@ -384,12 +348,12 @@ def judge(sim, state):
 # ---- setting up tables --------------------------------------------------------------------------
 
 def carom_sim_def():
-    """The carom table three cushion is played on, as pool-game builds it: 2.84 x 1.42 m, nose
-    37 mm, no pocket mouths, balls of 61.5 mm and 210 g (a SimDef)."""
-    d = _ffi.load().pool_default_sim_def()
-    d.table.length, d.table.width, d.table.cushion_height = 2.84, 1.42, 0.037
-    d.table.corner_mouth = d.table.side_mouth = 0.0
-    d.params.ball_radius, d.params.ball_mass = 0.03075, 0.21
+    """The carom table three cushion is played on, as pool-game builds it: the "carom" preset
+    (2.84 x 1.42 m, nose 37 mm, pockets "none") with its balls, 61.5 mm and 210 g (a SimDef)."""
+    lib = _ffi.load()
+    d = lib.pool_default_sim_def()
+    lib.pool_table_preset(b"carom", byref(d.table))
+    lib.pool_params_preset(b"carom", byref(d.params))
     return d
 
 

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <cmocka.h>
 
 #include "pool/game.h"
@@ -26,16 +27,12 @@ static inline pool_sim_def fix_pool_def(void) {
 	return def;
 }
 
-/// A carom table (UMB: 2.84 x 1.42 m, nose 37 mm, balls 61.5 mm and 210 g) without pocket mouths.
+/// The carom table three cushion is played on: the "carom" preset (UMB: 2.84 x 1.42 m, nose 37 mm,
+/// pockets "none") with its balls (61.5 mm, 210 g), as pool-game and Python's carom_sim_def set it.
 static inline pool_sim_def fix_carom_def(void) {
 	pool_sim_def def = fix_pool_def();
-	def.table.length = 2.84;
-	def.table.width = 1.42;
-	def.table.cushion_height = 0.037;
-	def.table.corner_mouth = 0.0;
-	def.table.side_mouth = 0.0;
-	def.params.ball_radius = 0.03075;
-	def.params.ball_mass = 0.21;
+	if (pool_table_preset("carom", &def.table) != POOL_OK || pool_params_preset("carom", &def.params) != POOL_OK)
+		abort();
 	return def;
 }
 

@@ -1,19 +1,11 @@
 // Prints sizeof and offsetof of the games library's structures that libpool.game mirrors, as
 // JSON (the format of tests/python/struct_sizes.c); test_game_python.py compares it with ctypes.
-#include <stddef.h>
 #include <stdio.h>
 
 #include <pool/game.h>
 #include <pool/noise.h>
 
-static int first = 1;
-
-static void begin(const char *name, size_t size) {
-	printf("%s\"%s\": {\"size\": %zu, \"fields\": {", first ? "" : ", ", name, size);
-	first = 0;
-}
-
-#define FIELD(type, field, last) printf("\"%s\": %zu%s", #field, offsetof(type, field), (last) ? "}}" : ", ")
+#include "../python/struct_json.h"
 
 int main(void) {
 	printf("{");

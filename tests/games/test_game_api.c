@@ -2,6 +2,7 @@
 // shots refused, spot positions (WPA 1.4, UMB art. 28) and the opening positions.
 #include "game_fixture.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 static void test_names_round_trip(void **state) {
@@ -201,6 +202,49 @@ static void test_shoot_in_one_call(void **state) {
 	pool_sim_destroy(two);
 }
 
+// An allocator that runs out after `left` blocks (the simulation's memory, docs/library.md).
+typedef struct budget {
+	int left;
+} budget;
+static void *budget_alloc(size_t size, void *context) {
+	budget *b = context;
+	return b->left-- > 0 ? malloc(size) : NULL;
+}
+static void budget_free(void *memory, void *context) {
+	(void)context;
+	free(memory);
+}
+
+// A shot whose run fails says what the run met (pool_sim_last_error: when memory ran out), not
+// only the code's name: the simulation's memory runs out after ever more blocks until one runs
+// out inside pool_sim_run (the history growing past its first room, 16 events).
+static void test_shoot_says_what_the_run_met(void **state) {
+	(void)state;
+	pool_sim_def def = fix_pool_def();
+	pool_ball_state balls[16];
+	const int n = pool_rack(POOL_RACK_9BALL, &def.table, &def.params, 0.0, balls, 16);
+	const pool_strike strike = pool_break_strike(7.0);
+	const pool_game_state st = pool_game_default_state(POOL_GAME_9BALL);
+	int in_run = 0;
+	for (int blocks = 1; blocks < 200 && !in_run; ++blocks) {
+		budget b = {blocks};
+		def.allocator = (pool_allocator){budget_alloc, budget_free, &b};
+		pool_sim *sim = NULL;
+		pool_error err = {{0}};
+		if (pool_sim_create(&def, &sim, &err) != POOL_OK)
+			continue;
+		pool_game_result r;
+		pool_ball_state final[16];
+		const pool_result code = pool_game_shoot(sim, &def, balls, n, &strike, &st, &r, final, &err);
+		if (code == POOL_ERR_OUT_OF_MEMORY && strstr(err.message, "s: out of memory")) {
+			assert_true(strncmp(err.message, "t = ", 4) == 0); // the instant it happened
+			in_run = 1;
+		}
+		pool_sim_destroy(sim);
+	}
+	assert_true(in_run);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_names_round_trip),
@@ -209,6 +253,7 @@ int main(void) {
 		cmocka_unit_test(test_spot_positions),
 		cmocka_unit_test(test_opening_positions),
 		cmocka_unit_test(test_shoot_in_one_call),
+		cmocka_unit_test(test_shoot_says_what_the_run_met),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

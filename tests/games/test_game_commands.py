@@ -149,12 +149,10 @@ class PoolSimGame(unittest.TestCase):
         self.assertEqual(set(again["game"]["state"]), set(state))
 
     def test_three_cushion_and_eight_ball_objects(self):
-        carom = {"length": 2.84, "width": 1.42, "cushion_height": 0.037, "corner_mouth": 0.0,
-                 "side_mouth": 0.0}
         res = sim(scenario([(0, (0.71, 0.528)), (1, (0.71, 0.71)), (2, (2.13, 0.71))],
                            {"ball": 0, "speed": 4.0, "phi": 20.0},
                            {"rules": "three_cushion", "state": {"points": 3, "target": 5}},
-                           table=carom, params={"ball_radius": 0.03075, "ball_mass": 0.21}))
+                           table="carom"))
         g = res["game"]
         self.assertEqual(g["points"], 1 if g["outcome"] in ("continue", "win") else 0)
         self.assertIn("target", g["state"])
@@ -425,6 +423,8 @@ class PoolGame(unittest.TestCase):
         self.assertEqual(len(record["shots"]), 1)
         self.assertEqual(record["rules"], "three_cushion")
         self.assertEqual(record["table"]["corner_mouth"], 0.0)
+        self.assertEqual(record["table"]["pockets"], "none")  # the carom preset
+        self.assertEqual(record["ball_radius"], 0.03075)      # with its balls
 
 
 def main():

@@ -6,14 +6,16 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
+#include <jansson.h>
 #include <lcm/lcm.h>
 
 #include "lcm_convert.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 typedef struct fixture {
 	pool_scenario scenario;
@@ -43,6 +45,8 @@ static int setup_cut(void **state) { return setup_shot(state, "cut"); }
 static int setup_break(void **state) { return setup_shot(state, "break"); }
 // A break cut at 0.5 s, balls still moving: its final states belong to max_time, as pool-sim's.
 static int setup_break_cut(void **state) { return setup_shot_until(state, "break", 0.5); }
+// A slow ball into a corner on a jaws table: it hits the jaws (tools/tables/rattle.json).
+static int setup_rattle(void **state) { return setup_shot(state, "rattle"); }
 
 static int teardown(void **state)
 {
@@ -226,6 +230,132 @@ static void check_error_shot(void **state)
 	pool_lcm_shot_release(&m);
 }
 
+// The part of the cushion an event hit, as the result file names it ("" when it names none).
+static const char *part_name(const pool_event *e)
+{
+	return e->type == POOL_EVENT_BALL_CUSHION && e->part != POOL_PART_NONE ? pool_cushion_part_name(e->part) : "";
+}
+
+typedef struct received2 {
+	pool_lcm_shot2_t *shot;
+	int shots;
+} received2;
+
+static void on_shot2(const lcm_recv_buf_t *rbuf, const char *channel, const pool_lcm_shot2_t *msg, void *user)
+{
+	(void)channel;
+	(void)msg;
+	received2 *r = user;
+	// Decoded again from the datagram rather than copied: lcm-gen's _copy clones an empty array
+	// with memcpy(NULL, ..., 0), which UBSan reports (a shot of a few events has empty arrays).
+	r->shot = calloc(1, sizeof *r->shot);
+	assert_non_null(r->shot);
+	assert_true(pool_lcm_shot2_t_decode(rbuf->data, 0, (int)rbuf->data_size, r->shot) > 0);
+	r->shots++;
+}
+
+// shot2_t through memq://: one part per event of the embedded shot, each the sim's own; the table
+// the shot was simulated on (its fields, cut angles in degrees as the result file writes them,
+// the balls' radius, and the result file's setup as JSON).
+static void check_shot2_parts_and_table(void **state)
+{
+	fixture *f = *state;
+	const pool_sim_def *def = &f->scenario.def;
+	assert_int_equal(def->table.pockets, POOL_POCKETS_JAWS);
+	lcm_t *lcm = lcm_create("memq://");
+	assert_non_null(lcm);
+	received2 r = {0};
+	pool_lcm_shot2_t_subscription_t *sub = pool_lcm_shot2_t_subscribe(lcm, POOL_LCM_CHANNEL_SHOT2, on_shot2, &r);
+	pool_lcm_shot_t shot;
+	pool_lcm_shot2_t shot2;
+	assert_int_equal(pool_lcm_shot_fill(f->sim, 77, 5, 123456, &shot), 0);
+	assert_int_equal(pool_lcm_shot2_fill(&shot, f->sim, def, NULL, &shot2), 0);
+	assert_int_equal(pool_lcm_shot2_t_publish(lcm, POOL_LCM_CHANNEL_SHOT2, &shot2), 0);
+	pool_lcm_shot2_release(&shot2);
+	pool_lcm_shot_release(&shot);
+	assert_int_equal(lcm_handle_timeout(lcm, 1000), 1);
+	assert_int_equal(r.shots, 1);
+	const pool_lcm_shot2_t *got = r.shot;
+	int count = 0, jaws = 0;
+	const pool_event *events = pool_sim_events(f->sim, &count);
+	assert_int_equal(got->shot.num_events, count);
+	assert_int_equal(got->num_event_parts, count);
+	for (int k = 0; k < count; ++k) {
+		assert_event_matches(f->sim, k, &got->shot.events[k]);
+		assert_string_equal(got->event_parts[k], part_name(&events[k]));
+		jaws += strcmp(got->event_parts[k], "jaw") == 0;
+	}
+	assert_true(jaws >= 1); // the rattle hits a jaw
+	assert_true(got->has_table);
+	const pool_lcm_table_t *t = &got->table;
+	assert_string_equal(t->pockets, "jaws");
+	assert_int_equal(t->shot_id, 77);
+	assert_true(t->length == def->table.length && t->width == def->table.width);
+	assert_true(t->cushion_height == def->table.cushion_height);
+	assert_true(t->corner_mouth == def->table.corner_mouth && t->side_mouth == def->table.side_mouth);
+	assert_true(t->corner_cut_angle == def->table.corner_cut_angle * 180.0 / 3.14159265358979323846);
+	assert_true(t->side_cut_angle == def->table.side_cut_angle * 180.0 / 3.14159265358979323846);
+	assert_true(fabs(t->corner_cut_angle - 142.0) < 1e-9 && fabs(t->side_cut_angle - 104.0) < 1e-9); // WPA
+	assert_true(t->corner_jaw_radius == def->table.corner_jaw_radius && t->side_jaw_radius == def->table.side_jaw_radius);
+	assert_true(t->corner_shelf == def->table.corner_shelf && t->side_shelf == def->table.side_shelf);
+	assert_true(t->corner_hole_radius == def->table.corner_hole_radius &&
+	            t->side_hole_radius == def->table.side_hole_radius);
+	assert_true(t->ball_radius == def->params.ball_radius);
+	json_error_t jerr;
+	json_t *setup = json_loads(t->json, 0, &jerr);
+	assert_non_null(setup);
+	assert_string_equal(json_string_value(json_object_get(json_object_get(setup, "table"), "pockets")), "jaws");
+	assert_true(json_real_value(json_object_get(setup, "ball_radius")) == def->params.ball_radius);
+	assert_true(json_real_value(json_object_get(json_object_get(setup, "params"), "mu_slide")) == def->params.mu_slide);
+	assert_string_equal(json_string_value(json_object_get(json_object_get(setup, "models"), "cushion")),
+	                    pool_cushion_model_name(def->models.cushion));
+	json_decref(setup);
+	pool_lcm_shot2_t_destroy(r.shot);
+	pool_lcm_shot2_t_unsubscribe(lcm, sub);
+	lcm_destroy(lcm);
+}
+
+// An error answer's shot2_t has no parts and no table; a shot2_t whose sim ran other events is
+// refused.
+static void check_shot2_error_answer(void **state)
+{
+	fixture *f = *state;
+	pool_lcm_shot_t error, shot;
+	pool_lcm_shot2_t shot2;
+	assert_int_equal(pool_lcm_shot_fill_error(1, 2, 3, "balls: none", &error), 0);
+	assert_int_equal(pool_lcm_shot2_fill(&error, NULL, NULL, NULL, &shot2), 0);
+	assert_int_equal(shot2.num_event_parts, 0);
+	assert_false(shot2.has_table);
+	assert_string_equal(shot2.table.pockets, "");
+	assert_true(pool_lcm_shot2_t_encoded_size(&shot2) > 0);
+	pool_lcm_shot2_release(&shot2);
+	pool_lcm_shot_release(&error);
+	assert_int_equal(pool_lcm_shot_fill(f->sim, 1, 2, 3, &shot), 0);
+	shot.num_events -= 1; // not the sim's events
+	assert_int_equal(pool_lcm_shot2_fill(&shot, f->sim, &f->scenario.def, NULL, &shot2), -1);
+	shot.num_events += 1;
+	pool_lcm_shot_release(&shot);
+}
+
+// event2_t: the event as event_t carries it, and its part.
+static void check_event2_fill(void **state)
+{
+	fixture *f = *state;
+	int count = 0;
+	const pool_event *events = pool_sim_events(f->sim, &count);
+	for (int k = 0; k < count; ++k) {
+		pool_lcm_event2_t m;
+		assert_int_equal(pool_lcm_event2_fill(f->sim, k, 9, 10, &m), 0);
+		assert_event_matches(f->sim, k, &m.event);
+		assert_string_equal(m.part, part_name(&events[k]));
+		assert_true(pool_lcm_event2_t_encoded_size(&m) > pool_lcm_event_t_encoded_size(&m.event));
+		pool_lcm_event2_release(&m);
+	}
+	pool_lcm_event2_t m;
+	assert_int_equal(pool_lcm_event2_fill(f->sim, count, 9, 10, &m), -1);
+	pool_lcm_event2_release(&m);
+}
+
 // The size pool-shot-server checks against --max-answer-bytes before building the answer: the
 // final-states message plus the events' share equals the whole message's encoded size, and the
 // final-states message carries exactly the full one's final states, sim_time and stop_reason.
@@ -314,6 +444,9 @@ int main(void)
 		cmocka_unit_test_setup_teardown(check_shot_size, setup_cut, teardown),
 		cmocka_unit_test_setup_teardown(check_shot_size, setup_break, teardown),
 		cmocka_unit_test(check_error_shot),
+		cmocka_unit_test_setup_teardown(check_shot2_parts_and_table, setup_rattle, teardown),
+		cmocka_unit_test_setup_teardown(check_shot2_error_answer, setup_rattle, teardown),
+		cmocka_unit_test_setup_teardown(check_event2_fill, setup_rattle, teardown),
 		cmocka_unit_test(check_request_decode),
 		cmocka_unit_test(check_resolve_url),
 	};

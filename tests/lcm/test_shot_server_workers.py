@@ -127,7 +127,8 @@ def queued_seconds(error):
 
 # 0. Calibration: the long request alone, on this machine and build, so the budget of part 1
 # leaves it room whatever the build's speed.
-server = start("--workers", "2")
+# (its own budget far above the default 10 s: a sanitizer build on a loaded machine takes that long)
+server = start("--workers", "2", "--max-shot-seconds", "300")
 t0 = time.monotonic()
 request(1, long_text)
 missing = collect([1], 120)
@@ -138,7 +139,9 @@ if 1 in got:
     u.compare_result(u.shot_json(got[1][0]), want_long, "calibration: long request")
 counts = stop(server, "calibration")
 expect_counts(counts, "calibration", answered=1, errors=0)
-BUDGET = round(max(3.0, 3.0 * t_long + 1.0), 1)
+# Two workers on two cores beside other tests (ctest -j2) run the long request up to about three
+# times slower than alone; five times leaves the short one's answer well before the endless one's.
+BUDGET = round(max(3.0, 5.0 * t_long + 2.0), 1)
 print("long request alone (%d events of 1000 balls): answered after %.2f s; budget for part 1: "
       "%g s" % (LONG_EVENTS, t_long, BUDGET), flush=True)
 

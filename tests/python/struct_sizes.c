@@ -1,19 +1,11 @@
 // Prints sizeof and offsetof of every public structure the Python binding mirrors, as JSON:
 // {"pool_vec3": {"size": 24, "fields": {"x": 0, ...}}, ...}. test_binding.py compares it with
 // ctypes, so a change to a header that the mirror misses (or the reverse) fails the tests.
-#include <stddef.h>
 #include <stdio.h>
 
 #include <pool/pool.h>
 
-static int first = 1;
-
-static void begin(const char *name, size_t size) {
-	printf("%s\"%s\": {\"size\": %zu, \"fields\": {", first ? "" : ", ", name, size);
-	first = 0;
-}
-
-#define FIELD(type, field, last) printf("\"%s\": %zu%s", #field, offsetof(type, field), (last) ? "}}" : ", ")
+#include "struct_json.h"
 
 int main(void) {
 	printf("{");

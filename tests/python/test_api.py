@@ -90,7 +90,9 @@ class Arrays(unittest.TestCase):
             with self.assertRaises(PoolError) as cm:
                 sim.trajectory([0.1, 30.0])
             self.assertEqual(cm.exception.name, "POOL_ERR_STATE")
-            self.assertIn("times[1]: 30.0 s is beyond the processed time", cm.exception.message)
+            # the time processed is the one run_until reached, not the last event's
+            self.assertEqual(cm.exception.message,
+                             "times[1] = 30 s is past the time processed, 0.5 s: run the shot there first")
             for bad in (["0.1"], "0.1", [True, False], [[0.1, 0.2]]):
                 with self.subTest(times=bad):
                     with self.assertRaises((TypeError, PoolError)) as cm:

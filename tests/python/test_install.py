@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""pip install ./python in a fresh virtual environment: the package builds its own libpool.so
-and libpool_games.so, `import libpool` works from another directory with those bundled
+"""pip install ./python in a fresh virtual environment: the package builds its own libpool.so,
+libpool_games.so and libpool_scenario.so, `import libpool` works from another directory with those bundled
 libraries, and a break's event list, a libpool.batch run, the break judged by libpool.game and a
 noisy strike equal the in-tree binding's bit for bit.
 
@@ -24,7 +24,7 @@ SKIP = 77
 # comparison is bit for bit.
 PROBE = r"""
 import json, sys
-import libpool, libpool.batch, libpool.game
+import libpool, libpool.batch, libpool.game, libpool._scenario
 
 def ball(b):
     return [b.id, b.motion] + [x.hex() for x in b.pos + b.vel + b.omega]
@@ -47,7 +47,8 @@ batch = {k: getattr(res, k).tobytes().hex() for k in
          ("stop_reason", "events", "end_time", "first_hit", "pos", "state")}
 print(json.dumps({"library": libpool.library_path(), "module": libpool.__file__, "stop": stop,
                   "events": events, "layout": layout, "batch": batch,
-                  "game": {"judged": judged, "noisy": noisy, "games_library": libpool.game.library_path()}}))
+                  "game": {"judged": judged, "noisy": noisy, "games_library": libpool.game.library_path()},
+                  "scenario_library": libpool._scenario.library_path()}))
 """
 
 
@@ -128,6 +129,10 @@ def main():
     if os.path.realpath(installed["game"].pop("games_library")) != os.path.realpath(games):
         sys.exit(f"test_install: libpool.game did not load the bundled {games}")
     tree["game"].pop("games_library")
+    scenario = os.path.join(site, "libpool", "libpool_scenario.so")
+    if os.path.realpath(installed.pop("scenario_library")) != os.path.realpath(scenario):
+        sys.exit(f"test_install: libpool.batch did not load the bundled {scenario}")
+    tree.pop("scenario_library")
     for key in ("stop", "events", "layout", "batch", "game"):
         if installed[key] != tree[key]:
             sys.exit(f"test_install: {key} differs between the installed package and the "

@@ -177,7 +177,7 @@ class ModelsMatter(unittest.TestCase):
 
 
 class BatchLayout(unittest.TestCase):
-    """libpool.batch's parser (a Python re-implementation of pool-sim's) reads models alike."""
+    """libpool.batch reads models with pool-sim's own parser (libpool_scenario)."""
 
     def setUp(self):
         try:

@@ -28,7 +28,8 @@
 //                  just above the ball's centre, and just below its top), ordinary cloth, the
 //                  layouts above
 // A third of every class's shots are airborne (options.airborne), and a third of those throw
-// balls into the air as well. Tables with a nose at or below the ball's centre, or above 1.9 R,
+// balls into the air as well. Half the shots of every class but tiny_table are on real pockets
+// (pockets "jaws": the presets' facings, jaws and holes), the others on the thesis model's lines. Tables with a nose at or below the ball's centre, or above 1.9 R,
 // are refused at validation (docs/physics.md: the nose would push the ball up and over the
 // cushion, or wedge it against the cloth): such shots are counted as refused, not run.
 // Strikes: speed 0.001..12 m/s (12 exactly too), phi at exact multiples of 90 deg (and 45, 30,
@@ -47,6 +48,13 @@
 //   pocket      a pocket event happens inside the lines, on a rail line (HS_TOL_POCKET_LINE) and
 //               in the mouth of the pocket it names (in flight: over the mouth, at or past the
 //               contact line, inside the table's edge)
+//   jaws        with pockets "jaws" the rail check is against the nose curve (table_shape.h): no
+//               ball nearer it than R in 3D (so on the cloth nearer no part than d_c), below the
+//               cloth, or on the cloth over a hole; a cushion event's gap and closing speed are
+//               the nose curve's; a pocket event is at the named pocket's hole edge (a ball landing
+//               from the air, or a linked one, anywhere over it), below the nose; off_table where
+//               the ball crosses the table's edge or the nose curve above the nose, leaves a hole's
+//               circle, or lands off the cloth
 //   energy      energy (kinetic + potential above the cloth) never increases across an event
 //               other than a LINK step (beyond HS_TOL_ENERGY_REL of it, HS_TOL_ENERGY_REL_CHANGE
 //               for state changes, plus HS_TOL_ENERGY_ABS, and for slide_roll the energy of the
@@ -83,6 +91,7 @@
 #include "link_energy.h"
 #include "motion.h"
 #include "predict.h" // POOL_APPROACH_EPS
+#include "table_shape.h"
 #ifndef POOL_APPROACH_EPS
 #define POOL_APPROACH_EPS 1e-9
 #endif
@@ -217,6 +226,7 @@ typedef struct hs_shot {
 	double speed, phi_deg, theta_deg, a, b;     // strike as written to the scenario file
 	pool_strike strike;                         // the same in radians
 	const char *origin;                         // how to reproduce a shot hs_make did not make (NULL: soak's)
+	double corner_cut_deg, side_cut_deg;        // pockets "jaws": the cut angles as written to the scenario
 } hs_shot;
 
 static inline double hs_dc(const pool_sim_def *def) {
@@ -228,6 +238,8 @@ static inline int hs_fits(const hs_shot *s, pool_vec3 pos) {
 	const double R = s->def.params.ball_radius, L = s->def.table.length, W = s->def.table.width;
 	const double dc = hs_dc(&s->def), tol = POOL_TOUCH_TOLERANCE;
 	if (!(pos.x >= dc - tol && pos.x <= L - dc + tol && pos.y >= dc - tol && pos.y <= W - dc + tol))
+		return 0;
+	if (pool_table_hole_at(&s->def.table, pos.x, pos.y) != POOL_POCKET_NONE) // jaws: a hole reaching inside the lines
 		return 0;
 	if (pos.z > R) { // in the air: clear of the noses too (pool_sim_add_ball refuses a ball inside one)
 		const double h = s->def.table.cushion_height;
@@ -872,6 +884,12 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 		s->def.models = pool_thesis_models();
 	s->def.max_events = HS_MAX_EVENTS;
 	s->def.max_time = HS_MAX_TIME;
+	// Half the shots on real pockets ("jaws": facings, jaws, holes; the WPA geometry of the
+	// presets), the others on the thesis model's lines, by another bit of the index's Weyl
+	// sequence; tiny tables keep the lines (their rails are too short for the jaws). Chosen before
+	// the generators, so they place no ball over a hole (hs_fits).
+	const int jaws = cls != HS_TINY_TABLE && (((uint64_t)index * 0x9E3779B97F4A7C15ull) >> 61 & 1);
+	s->def.table.pockets = jaws ? POOL_POCKETS_JAWS : POOL_POCKETS_MOUTH_LINES;
 	switch (cls) {
 	case HS_LAYOUT: hs_gen_layout(s, &r); break;
 	case HS_RAIL_STRUCK: hs_gen_rail_struck(s, &r); break;
@@ -883,9 +901,15 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	case HS_EXTREME_PARAMS: hs_gen_extreme_params(s, &r); break;
 	default: hs_gen_nose(s, &r); break;
 	}
-	// The thesis model's pockets: these checks (contact lines, mouths on the rail lines) are its
-	// geometry (set after the generators: the nose class takes a preset's table); pockets "jaws" has its own invariants (tests/unit/test_jaws_shots.c).
-	s->def.table.pockets = POOL_POCKETS_MOUTH_LINES;
+	// Again after the generators (the nose class takes a preset's table). The cut angles as
+	// pool-sim computes them from the degrees the scenario carries, so it replays bit for bit.
+	s->def.table.pockets = jaws ? POOL_POCKETS_JAWS : POOL_POCKETS_MOUTH_LINES;
+	if (jaws) {
+		s->corner_cut_deg = 142.0;
+		s->side_cut_deg = 104.0;
+		s->def.table.corner_cut_angle = s->corner_cut_deg * HS_DEG;
+		s->def.table.side_cut_angle = s->side_cut_deg * HS_DEG;
+	}
 	if (s->n == 0) { // a generator found no room at all: one ball in the middle
 		hs_add(s, hs_xy(0.5 * s->def.table.length, 0.5 * s->def.table.width, s->def.params.ball_radius));
 		hs_make_cue(s, 0);
@@ -905,8 +929,15 @@ static inline void hs_print_scenario(FILE *f, const hs_shot *s) {
 	const pool_params *p = &s->def.params;
 	fprintf(f, "{\"format\": \"libpool-scenario/1\",\n");
 	fprintf(f, " \"table\": {\"length\": %.17g, \"width\": %.17g, \"cushion_height\": %.17g, \"corner_mouth\": %.17g, "
-	           "\"side_mouth\": %.17g, \"pockets\": \"mouth_lines\"},\n",
-	        t->length, t->width, t->cushion_height, t->corner_mouth, t->side_mouth);
+	           "\"side_mouth\": %.17g, \"pockets\": \"%s\"",
+	        t->length, t->width, t->cushion_height, t->corner_mouth, t->side_mouth, pool_pockets_model_name(t->pockets));
+	if (t->pockets == POOL_POCKETS_JAWS)
+		fprintf(f, ", \"corner_cut_angle\": %.17g, \"side_cut_angle\": %.17g, \"corner_jaw_radius\": %.17g, "
+		           "\"side_jaw_radius\": %.17g, \"corner_shelf\": %.17g, \"side_shelf\": %.17g, \"corner_hole_radius\": %.17g, "
+		           "\"side_hole_radius\": %.17g",
+		        s->corner_cut_deg, s->side_cut_deg, t->corner_jaw_radius, t->side_jaw_radius, t->corner_shelf, t->side_shelf,
+		        t->corner_hole_radius, t->side_hole_radius);
+	fprintf(f, "},\n");
 	fprintf(f, " \"params\": {\"g\": %.17g, \"mu_slide\": %.17g, \"mu_roll\": %.17g, \"mu_spin\": %.17g, \"mu_ball\": %.17g, "
 	           "\"e_ball\": %.17g, \"mu_cushion\": %.17g, \"e_cushion\": %.17g, \"mu_table\": %.17g, \"e_table\": %.17g, "
 	           "\"ball_radius\": %.17g, \"ball_mass\": %.17g, \"cue_mass\": %.17g, \"e_cushion_mathavan\": %.17g, "
@@ -956,6 +987,9 @@ typedef struct hs_stats {
 	long class_refused[HS_CLASS_COUNT], class_airborne[HS_CLASS_COUNT];
 	long fail[HS_CLASS_COUNT][HS_CK_COUNT];
 	long gross[HS_CLASS_COUNT][HS_CK_COUNT]; // failures beyond hs_gross[check]
+	// pockets "jaws": shots (airborne among them), contacts with a jaw, a facing, a nose segment,
+	// and balls pocketed on the cloth and from the air
+	long jaws_shots, jaws_airborne, jaw_hits, facing_hits, nose_hits, hole_pockets, air_pockets;
 } hs_stats;
 
 // Magnitude above which a failure counts as gross in the summary: m for overlap, rail, pocket,
@@ -1118,9 +1152,23 @@ static inline double hs_outside_air(const pool_sim_def *def, double dc, pool_vec
 	return worst;
 }
 
-// Positions at time t: overlaps and the lines (in flight: the noses and the table's edge).
-static inline void hs_check_positions(const hs_shot *s, double dc, const pool_ball_state *b, double t, hs_stats *st,
-                                      hs_report *rep) {
+// Pockets "jaws" (docs/physics.md "Table geometry"): how far a ball centred at p is where no
+// ball in play may be (> 0: a violation, m): nearer the nose curve than R in 3D (on the cloth,
+// nearer a part's line or arc than d_c; in flight, its 3D distance to the nose), below the cloth,
+// or on the cloth over a hole (it drops there: pocket).
+static inline double hs_inside_jaws(const pool_table_shape *shape, const pool_sim_def *def, pool_vec3 p) {
+	const double R = def->params.ball_radius;
+	double worst = fmax(R - pool_shape_distance(shape, p, NULL), R - p.z);
+	for (int k = 0; k < 6 && p.z <= R + POOL_TOUCH_TOLERANCE; ++k)
+		if (shape->has_pocket[k])
+			worst = fmax(worst, shape->pockets[k].hole_radius - hypot(p.x - shape->pockets[k].hx, p.y - shape->pockets[k].hy));
+	return worst;
+}
+
+// Positions at time t: overlaps and the lines (in flight: the noses and the table's edge; with
+// pockets "jaws", shape: the nose curve and the holes).
+static inline void hs_check_positions(const hs_shot *s, const pool_table_shape *shape, double dc,
+                                      const pool_ball_state *b, double t, hs_stats *st, hs_report *rep) {
 	const double R = s->def.params.ball_radius;
 	st->samples++;
 	for (int i = 0; i < s->n; ++i) {
@@ -1129,7 +1177,15 @@ static inline void hs_check_positions(const hs_shot *s, double dc, const pool_ba
 		if (!hs_state_finite(&b[i]))
 			hs_fail(rep, HS_CK_API, "t=%.17g: ball %d has a non-finite state", t, (int)b[i].id);
 		const int linked = b[i].motion == POOL_MOTION_LINKED;
-		if (s->def.airborne) {
+		if (shape) {
+			const double out = hs_inside_jaws(shape, &s->def, b[i].pos);
+			if (out > st->worst_rail)
+				st->worst_rail = out;
+			if (!(out <= (linked ? HS_TOL_LINK_LENGTH : HS_TOL_LENGTH)))
+				hs_fail_mag(rep, HS_CK_RAIL, out,
+				            "t=%.17g: ball %d at (%.17g, %.17g, %.17g) is %.3g m into the nose curve, the cloth or over a hole",
+				            t, (int)b[i].id, b[i].pos.x, b[i].pos.y, b[i].pos.z, out);
+		} else if (s->def.airborne) {
 			const double out = hs_outside_air(&s->def, dc, b[i].pos);
 			if (out > st->worst_rail)
 				st->worst_rail = out;
@@ -1205,9 +1261,16 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 	const pool_params *p = &s->def.params;
 	const double R = p->ball_radius, dc = hs_dc(&s->def);
 	const int n = s->n;
+	pool_table_shape shape; // pockets "jaws": the nose curve and the holes the checks measure against
+	const pool_table_shape *jaws =
+	    s->def.table.pockets == POOL_POCKETS_JAWS && pool_table_shape_build(&s->def.table, R, &shape, NULL) == POOL_OK ? &shape : NULL;
 	int ne;
 	const pool_event *ev = pool_sim_events(sim, &ne);
 	rep->events = ne;
+	if (jaws) {
+		st->jaws_shots++;
+		st->jaws_airborne += s->def.airborne;
+	}
 	rep->stop = pool_sim_stop_reason(sim);
 	st->events += ne;
 	pool_ball_state seg[HS_MAX_BALLS], now[HS_MAX_BALLS], lib[HS_MAX_BALLS];
@@ -1329,7 +1392,12 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 			hs_rail_out(E->rail, &ox, &oy);
 			double gap = hs_rail_gap(&s->def, dc, E->rail, b->pos);
 			double vin = b->vel.x * ox + b->vel.y * oy; // > 0: towards the rail
-			if (s->def.airborne) { // in flight too: the distance to the nose, and its rate
+			if (jaws) { // the nose curve: the distance to it in 3D, and its rate along the nearest part's normal
+				int part = -1;
+				gap = pool_shape_distance(jaws, b->pos, &part) - R;
+				const pool_vec3 nrm = pool_shape_normal(jaws, part, b->pos);
+				vin = -(nrm.x * b->vel.x + nrm.y * b->vel.y + nrm.z * b->vel.z);
+			} else if (s->def.airborne) { // in flight too: the distance to the nose, and its rate
 				const pool_vec3 q = hs_nose_point(&s->def, E->rail, b->pos);
 				const double dx = b->pos.x - q.x, dy = b->pos.y - q.y, dz = b->pos.z - q.z;
 				const double dist = sqrt(dx * dx + dy * dy + dz * dz);
@@ -1348,7 +1416,34 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 				hs_fail_mag(rep, HS_CK_CONTACT, -vin, "event %d (ball_cushion %d %s, t=%.17g): impulse on a ball leaving the rail at %.3g m/s%s",
 				        e, (int)after[0].id, pool_rail_name(E->rail), t, -vin, flagged ? " (link)" : "");
 		}
-		if (E->type == POOL_EVENT_POCKET && E->ball_count == 1 && s->def.airborne) {
+		if (jaws && E->type == POOL_EVENT_BALL_CUSHION) {
+			st->jaw_hits += E->part == POOL_PART_JAW;
+			st->facing_hits += E->part == POOL_PART_FACING;
+			st->nose_hits += E->part == POOL_PART_NOSE;
+		}
+		if (E->type == POOL_EVENT_POCKET && E->ball_count == 1 && jaws) {
+			if (before[0].motion == POOL_MOTION_AIRBORNE)
+				st->air_pockets++;
+			else
+				st->hole_pockets++;
+			// Over the hole of the pocket named: on the cloth its centre crosses the hole's edge
+			// (a linked ball past it by what its step moved it); in flight it enters the hole's
+			// circle below the nose or lands over it.
+			const pool_ball_state *b = &before[0];
+			const pool_pocket_shape *ps = &jaws->pockets[E->pocket < 6 ? E->pocket : 0];
+			const double in = ps->hole_radius - hypot(b->pos.x - ps->hx, b->pos.y - ps->hy);
+			// (A ball landing over the hole, airborne until then, drops wherever it lands.)
+			const int rolling_in = b->pos.z <= R + HS_TOL_LENGTH && b->motion != POOL_MOTION_AIRBORNE &&
+			                       b->motion != POOL_MOTION_LINKED;
+			const int ok = E->pocket < 6 && jaws->has_pocket[E->pocket] && in >= -HS_TOL_POCKET_LINE &&
+			               (!rolling_in || in <= HS_TOL_POCKET_LINE) &&
+			               b->pos.z <= s->def.table.cushion_height + HS_TOL_LENGTH;
+			if (!ok)
+				hs_fail_mag(rep, HS_CK_POCKET, fmax(fabs(in), 1e-6),
+				            "event %d (pocket %s, ball %d, t=%.17g) at (%.17g, %.17g, %.17g): %.3g m inside that pocket's hole "
+				            "(at its edge on the cloth, over it in flight, below the nose)",
+				            e, pool_pocket_name(E->pocket), (int)after[0].id, t, b->pos.x, b->pos.y, b->pos.z, in);
+		} else if (E->type == POOL_EVENT_POCKET && E->ball_count == 1 && s->def.airborne) {
 			// Crossing a contact line over its mouth below the nose, or landing past it: over the
 			// mouth of the pocket named, at or past the line, inside the table's edge.
 			const pool_ball_state *b = &before[0];
@@ -1380,11 +1475,22 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 				        ok ? "" : ", not on a rail line in that pocket's mouth");
 		}
 		if (E->type == POOL_EVENT_OFF_TABLE && E->ball_count == 1) {
-			// A ball leaves the table where it crosses the table's edge, above the nose.
+			// A ball leaves the table where it crosses the table's edge, above the nose (with
+			// pockets "jaws" where it crosses the nose curve above the nose, leaves a hole's circle
+			// in flight, or lands off the cloth).
 			const pool_ball_state *b = &before[0];
 			double edge = INFINITY;
 			for (int rail = 0; rail < 4; ++rail)
 				edge = fmin(edge, fabs(hs_inside_edge(&s->def, rail, b->pos)));
+			for (int k = 0; jaws && k < 6; ++k)
+				if (jaws->has_pocket[k])
+					edge = fmin(edge, fabs(jaws->pockets[k].hole_radius - hypot(b->pos.x - jaws->pockets[k].hx, b->pos.y - jaws->pockets[k].hy)));
+			if (jaws) { // crossing the nose curve in plan (above the nose), leaving a hole's circle, landing
+				const pool_vec3 level = {b->pos.x, b->pos.y, s->def.table.cushion_height};
+				edge = fmin(edge, pool_shape_distance(jaws, level, NULL));
+				if (b->pos.z <= R + HS_TOL_LENGTH)
+					edge = 0.0;
+			}
 			if (!(edge <= HS_TOL_POCKET_LINE))
 				hs_fail_mag(rep, HS_CK_POCKET, edge, "event %d (off_table, ball %d, t=%.17g) at (%.17g, %.17g, %.17g): %.3g m from the table's edge",
 				            e, (int)after[0].id, t, b->pos.x, b->pos.y, b->pos.z, edge);
@@ -1415,7 +1521,7 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 				continue;
 			for (int i = 0; i < n; ++i)
 				pool_motion_evolve(p, &seg[i], ts - t0[i], &now[i]);
-			hs_check_positions(s, dc, now, ts, st, rep);
+			hs_check_positions(s, jaws, dc, now, ts, st, rep);
 			++samples;
 			if ((k == 0 || k == K / 2 + 1) && (e % state_at_every == 0) && state_at_checks < 2 * HS_STATE_AT_CHECKS) {
 				++state_at_checks;
@@ -1463,7 +1569,7 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 				        T, (int)end[i].id, pool_motion_name(end[i].motion), end[i].vel.x, end[i].vel.y, end[i].pos.x,
 				        end[i].pos.y, HS_REST_FAR, far[i].pos.x, far[i].pos.y);
 		}
-		hs_check_positions(s, dc, far, T + HS_REST_FAR, st, rep);
+		hs_check_positions(s, jaws, dc, far, T + HS_REST_FAR, st, rep);
 		break;
 	}
 	case POOL_STOP_MAX_EVENTS: st->stop_max_events++; break;
@@ -1556,6 +1662,9 @@ static inline void hs_print_summary(FILE *f, const char *what, const hs_stats *s
 	        st->worst_floor_gain, st->floored, st->worst_floor_ratio, st->worst_momentum, st->worst_gap, st->worst_separating,
 	        st->stop_rest, st->stop_max_events, st->stop_max_time, st->airborne,
 	        st->shots ? 100.0 * st->airborne / st->shots : 0.0, st->refused);
+	fprintf(f, "  pockets \"jaws\": %ld shots (%ld airborne), %ld jaw, %ld facing and %ld nose contacts, %ld balls pocketed "
+	           "rolling or sliding in, %ld landing or dropping from the air\n",
+	        st->jaws_shots, st->jaws_airborne, st->jaw_hits, st->facing_hits, st->nose_hits, st->hole_pockets, st->air_pockets);
 	for (int c = 0; c < HS_CLASS_COUNT; ++c) {
 		if (!st->class_shots[c])
 			continue;

@@ -1,4 +1,4 @@
-"""pool-bench-breaks, pool-break-plot and tools/breaks/pooltool_breaks.py (issue 25).
+"""pool-bench-breaks, pool-break-plot and bench/breaks/pooltool_breaks.py (issue 25).
 
 pool-bench-breaks: its printed statistics are recomputed here from its --json (the median rack
 ball's distance, the means per break, the share of breaks pocketing a ball); the same seed gives

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "models_json.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 // One ball on the cloth, and the text that goes between "format" and "balls".
 #define DOC(middle) \

@@ -17,7 +17,7 @@
 
 #include "json_writer.h"
 #include "read_input.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "text_escape.h"
 
 #define R 0.028575

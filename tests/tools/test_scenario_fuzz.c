@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #ifndef POOL_FUZZ_SCENARIO_DIR
 #error "POOL_FUZZ_SCENARIO_DIR must name compare/scenarios"

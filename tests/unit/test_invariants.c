@@ -25,10 +25,12 @@
 
 typedef void (*breaker)(pool_sim *sim);
 
-// A frozen break run to its first LINK step (the cluster of a 0.1 mm-gap break), so the world
-// has a heap, clusters and a history to break.
+// A 0.1 mm-gap break run to its first LINK step, so the world has a heap, clusters and a history
+// to break: under the 2012 laws on their table (pockets "mouth_lines") it forms clusters (13 link
+// steps), under the default laws none.
 static pool_sim *running_break(void) {
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = thesis_sim_def();
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES;
 	pool_sim *sim = make_sim(&def);
 	pool_ball_state balls[16];
 	const int n = pool_rack(POOL_RACK_8BALL, &def.table, &def.params, 1e-4, balls, 16);

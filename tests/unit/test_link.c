@@ -18,6 +18,7 @@
 
 #include "pool/pool.h"
 #include "link_step.h"
+#include "table_shape.h"
 #include "motion.h"
 #include "vec3.h"
 
@@ -677,6 +678,70 @@ static void test_cut_step_keeps_kick_of_time_taken(void **state) {
 	}
 }
 
+// A linked ball hit into a facing bounces off it, with restitution: ball 0 on the shelf of the
+// north side pocket, touching its west facing and pinned to it by spin (the cloth drives it into
+// the facing: a cluster of one ball and the facing), and ball 1 rolling at 1 m/s into it along
+// -x, the facing's side of the mouth. The hit sends ball 0 into the facing faster than the
+// cluster's forces close a contact, so the cluster dissolves and the facing's contact is an event:
+// Petit's law sends it back out at e_cushion of its normal speed, less what the cloth's share
+// takes, where the inelastic step would leave it against the facing. Asked of the four rails'
+// contact lines (the thesis geometry), the hit along -x drives it into no rail (the north
+// line's normal is +y), and it stayed.
+static void test_hit_into_a_facing_bounces(void **state) {
+	(void)state;
+	pool_sim_def def = thesis_sim_def();
+	def.params.mu_ball = 0.0;
+	def.params.mu_cushion = 0.0;
+	const double R = def.params.ball_radius, v = 1.0;
+	pool_table_shape shape;
+	pool_error err;
+	assert_int_equal(pool_table_shape_build(&def.table, R, &shape, &err), POOL_OK);
+	const pool_pocket_shape *n = &shape.pockets[POOL_POCKET_N];
+	int facing = -1;
+	for (int k = 0; k < 4; ++k) {
+		const pool_nose_part *part = &shape.parts[n->parts[k]];
+		if (part->part == POOL_PART_FACING && part->ax < 0.5 * def.table.length)
+			facing = n->parts[k];
+	}
+	assert_true(facing >= 0);
+	const pool_nose_part *f = &shape.parts[facing];
+	// Touching the facing a third of the way along it, on the cloth (centre dc from its line).
+	const double along = f->length / 3.0;
+	pool_ball_state a = ball(0, f->ax + along * f->dx + shape.dc * f->nx, f->ay + along * f->dy + shape.dc * f->ny, R);
+	const double w0 = 40.0; // the cloth drives it along -n, into the facing: omega = w0 (z x -n)
+	a.omega = pool_v3(w0 * f->ny, -w0 * f->nx, 0.0);
+	pool_ball_state b = ball(1, a.pos.x + 2.0 * R + 0.004, a.pos.y, R);
+	b.vel = pool_v3(-v, 0.0, 0.0);
+	b.omega = pool_v3(0.0, -v / R, 0.0); // rolling along -x
+	pool_sim *sim = make_sim(&def);
+	add_ball(sim, &a);
+	add_ball(sim, &b);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int count = 0, linked = 0, hit = -1, bounce = -1;
+	const pool_event *ev = pool_sim_events(sim, &count);
+	for (int k = 0; k < count; ++k) {
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[k]);
+		linked |= ev[k].type == POOL_EVENT_LINK_BEGIN && ev[k].time == 0.0;
+		if (hit < 0 && ev[k].type == POOL_EVENT_BALL_BALL)
+			hit = k;
+		if (hit >= 0 && bounce < 0 && ev[k].type == POOL_EVENT_BALL_CUSHION && after[0].id == 0 &&
+		    ev[k].part == POOL_PART_FACING)
+			bounce = k;
+	}
+	assert_true(linked); // pinned to the facing from the start
+	assert_true(hit >= 0);
+	if (bounce < 0)
+		fail_msg("ball 0 never bounced off the facing after the hit at %.6f s (%d events)", ev[hit].time, count);
+	const pool_ball_state in = state_before(sim, &def.params, bounce, 0);
+	const pool_ball_state *out = pool_sim_event_states(sim, &ev[bounce]);
+	const double vn_in = -(in.vel.x * f->nx + in.vel.y * f->ny), vn_out = out[0].vel.x * f->nx + out[0].vel.y * f->ny;
+	print_message("hit into a facing: ball 0 meets it at %.6f s at %.3f m/s normal, leaves at %.3f m/s\n",
+	              ev[bounce].time, vn_in, vn_out);
+	assert_true(vn_in > 0.5 * v);
+	assert_true(vn_out > 0.5 * def.params.e_cushion * vn_in);
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {
 	    cmocka_unit_test(test_pushed_pair_closed_form), cmocka_unit_test(test_touching_ball_left_out),
@@ -687,6 +752,7 @@ int main(void) {
 	    cmocka_unit_test(test_hit_through_a_cluster),
 	    cmocka_unit_test(test_ball_resting_on_two_gathered_at_once),
 	    cmocka_unit_test(test_cut_step_keeps_kick_of_time_taken),
+	    cmocka_unit_test(test_hit_into_a_facing_bounces),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -35,10 +35,6 @@ def work(name):
 
 
 
-def lcm_events(events):
-    """A result's events as LCM's released event_t carries them: without the cushion "part"
-    (pockets "jaws"), which that type has no field for (docs/lcm.md)."""
-    return [{k: v for k, v in e.items() if k != "part"} for e in events]
 
 class LiveTest(unittest.TestCase):
     @classmethod
@@ -87,17 +83,19 @@ class LiveTest(unittest.TestCase):
 
     @staticmethod
     def receive_shot(ws, timeout=30):
-        """Messages until a "shot" one: (hello seen, events, shot message)."""
+        """Messages until a "shot" one: (hello seen, table message, events, shot message)."""
         deadline = time.monotonic() + timeout
-        hello, events = None, []
+        hello, table, events = None, None, []
         while True:
             msg = json.loads(ws.recv(timeout=max(0.1, deadline - time.monotonic())))
             if msg["type"] == "hello":
                 hello = msg
+            elif msg["type"] == "table":
+                table = msg
             elif msg["type"] == "event":
                 events.append(msg)
             elif msg["type"] == "shot":
-                return hello, events, msg
+                return hello, table, events, msg
 
     def test_serves_only_the_page_and_the_stream(self):
         with urllib.request.urlopen(self.base + "/", timeout=10) as r:
@@ -146,22 +144,31 @@ class LiveTest(unittest.TestCase):
         # Several shots through all of them: the good client gets each one whole.
         for k in range(6):
             result = self.publish_shot(f"shot{k}")
-            hello, events, shot = self.receive_shot(good)
+            hello, table, events, shot = self.receive_shot(good)
             if k == 0:
                 self.assertEqual(hello["table"]["length"], 2.54)
                 self.assertEqual(hello["params"]["mu_slide"], 0.2)
-            self.assertEqual([e["event"] for e in events], lcm_events(result["events"]))
+            # The shot's own table (POOL_TABLE) before its events, as pool-sim's result has it.
+            self.assertIsNotNone(table)
+            for key in ("table", "ball_radius", "params", "models"):
+                self.assertEqual(table[key], result[key], key)
+                self.assertEqual(shot["result"][key], result[key], key)
+            self.assertEqual(table["table"]["pockets"], "jaws")
+            # The events with their cushion parts (POOL_EVENT2), exactly the result's.
+            self.assertTrue(any("part" in e for e in result["events"]))
+            self.assertEqual([e["event"] for e in events], result["events"])
             self.assertEqual([e["seq"] for e in events], list(range(len(result["events"]))))
-            self.assertEqual(shot["result"]["events"], lcm_events(result["events"]))
+            self.assertEqual(shot["result"]["events"], result["events"])
             self.assertEqual(shot["result"]["final"], result["final"])
             self.assertEqual(shot["result"]["stats"]["stop_reason"], result["stats"]["stop_reason"])
-            self.assertEqual(len({e["shot_id"] for e in events} | {shot["shot_id"]}), 1)
+            self.assertEqual(len({e["shot_id"] for e in events} | {shot["shot_id"], table["shot_id"]}), 1)
         self.alive()
         # A late client gets the last shot first.
         late = connect(f"ws://127.0.0.1:{self.port}/stream", open_timeout=10, max_size=None)
-        hello, events, shot = self.receive_shot(late)
+        hello, table, events, shot = self.receive_shot(late)
         self.assertIsNotNone(hello)
-        self.assertEqual(shot["result"]["events"], lcm_events(result["events"]))
+        self.assertIsNotNone(table)
+        self.assertEqual(shot["result"]["events"], result["events"])
         for c in (late, good, noisy, stalled):
             try:
                 c.close()
@@ -194,6 +201,9 @@ class LiveTest(unittest.TestCase):
             self.assertEqual(len(drawn), len(final))
             for bid, x, y in drawn:
                 self.assertEqual([x, y], final[bid][:2], f"ball {bid}")
+            # Drawn on the shot's own table: its pockets' jaws and facings (pockets "jaws").
+            self.assertEqual(b.evaluate("document.querySelectorAll('.jaw').length"), 12)
+            self.assertEqual(b.evaluate("document.querySelectorAll('.facing').length"), 12)
             self.assertEqual(b.errors, [])
 
 

@@ -192,6 +192,63 @@ class ViewTest(unittest.TestCase):
                          [2.54, 1.27])
         self.assertEqual(b.errors, [])
 
+    def test_pockets_to_scale(self):
+        """Pockets "jaws" drawn from the result's table fields, checked against the geometry
+        itself, not the page's arithmetic: each facing ends on its hole's edge, leaves its
+        pocket's axis at the cut angle less the rail's angle to the axis (a corner's facings 7 deg
+        off the diagonal for 142 deg, a side's 14 deg off the perpendicular for 104 deg), and each
+        jaw starts on its rail's nose line; "mouth_lines" keeps the thesis openings, "none" has no
+        pocket. A table with other cut angles and holes moves them."""
+        import math
+        b = self.browser
+        read = """[...document.querySelectorAll('.facing')].map(f => [f.dataset.pocket, +f.getAttribute('x1'),
+            +f.getAttribute('y1'), +f.getAttribute('x2'), +f.getAttribute('y2')])"""
+        holes = """Object.fromEntries([...document.querySelectorAll('.hole')].map(h => [h.dataset.pocket,
+            [+h.getAttribute('cx'), +h.getAttribute('cy'), +h.getAttribute('r')]]))"""
+        jaw_starts = """[...document.querySelectorAll('.jaw')].map(j => [j.dataset.pocket,
+            ...j.getAttribute('d').split(' ').slice(1, 3).map(Number)])"""
+        for corner_cut, side_cut, corner_hole in ((142.0, 104.0, 0.06985), (135.0, 100.0, 0.075)):
+            scenario = work("pockets_%g.json" % corner_cut)
+            with open(scenario, "w") as f:
+                json.dump({"format": "libpool-scenario/1",
+                           "table": {"preset": "wpa-9ft", "corner_cut_angle": corner_cut, "side_cut_angle": side_cut,
+                                     "corner_hole_radius": corner_hole},
+                           "balls": [{"id": 0, "pos": [1.0, 0.6]}], "strike": {"ball": 0, "speed": 1.0}}, f)
+            result, page, second = page_of(scenario, "pockets_%g" % corner_cut)
+            with open(result, encoding="utf-8") as f:
+                table = json.load(f)["table"]
+            L, W = table["length"], table["width"]
+            axis = {"sw": (-1, -1), "se": (1, -1), "nw": (-1, 1), "ne": (1, 1), "s": (0, -1), "n": (0, 1)}
+            for p in (page, second):
+                self.load(p)
+                facings, hole, jaws = b.evaluate(read), b.evaluate(holes), b.evaluate(jaw_starts)
+                self.assertEqual(len(facings), 12)
+                self.assertEqual(len(jaws), 12)
+                self.assertEqual(sorted(hole), sorted(axis))
+                for name, x1, y1, x2, y2 in facings:
+                    cx, cy, r = hole[name]
+                    self.assertAlmostEqual(math.hypot(x2 - cx, y2 - cy), r, delta=1e-9, msg=name)
+                    self.assertAlmostEqual(r, corner_hole if len(name) == 2 else table["side_hole_radius"],
+                                           delta=1e-12)
+                    ax, ay = axis[name]
+                    cos = abs((x2 - x1) * ax + (y2 - y1) * ay) / math.hypot(x2 - x1, y2 - y1) / math.hypot(ax, ay)
+                    off_axis = math.degrees(math.acos(min(cos, 1.0)))
+                    want = corner_cut - 135.0 if len(name) == 2 else side_cut - 90.0
+                    self.assertAlmostEqual(off_axis, want, delta=1e-6, msg=name)
+                for name, x, y in jaws:  # on a nose line: x = 0 or L, y = 0 or W
+                    self.assertAlmostEqual(min(abs(x), abs(x - L), abs(y), abs(y - W)), 0.0, delta=1e-12, msg=name)
+                self.assertEqual(b.errors, [])
+        for pockets, mouths, holes_drawn in (("mouth_lines", 6, 6), ("none", 0, 0)):
+            scenario = work("pockets_%s.json" % pockets)
+            with open(scenario, "w") as f:
+                json.dump({"format": "libpool-scenario/1", "table": {"preset": "wpa-9ft", "pockets": pockets},
+                           "balls": [{"id": 0, "pos": [1.0, 0.6]}], "strike": {"ball": 0, "speed": 1.0}}, f)
+            _, page, _ = page_of(scenario, "pockets_" + pockets)
+            self.load(page)
+            self.assertEqual(b.evaluate("document.querySelectorAll('.mouth').length"), mouths, pockets)
+            self.assertEqual(b.evaluate("document.querySelectorAll('.hole').length"), holes_drawn, pockets)
+            self.assertEqual(b.evaluate("document.querySelectorAll('.jaw, .facing').length"), 0, pockets)
+
     def test_degrades_gracefully(self):
         # An older result (no initial, params or table), with fields this page does not know
         # (a cushion part, a game, an unknown event type): it loads, draws every ball, says what

@@ -2,7 +2,8 @@
 #include "lcm_convert.h"
 
 #include "game_json.h"
-#include "scenario.h"
+#include "pool/scenario.h"
+#include "result_setup.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -316,19 +317,121 @@ int pool_lcm_request_decode(const void *data, size_t size, pool_lcm_shot_request
 	return 0;
 }
 
-int pool_lcm_shot2_fill(const pool_lcm_shot_t *shot, const pool_sim *sim, const pool_game_state *game,
-                        const pool_table_def *table, pool_lcm_shot2_t *out)
+int pool_lcm_table_fill(const pool_sim_def *def, int64_t shot_id, int64_t utime, pool_lcm_table_t *out)
+{
+	memset(out, 0, sizeof *out);
+	out->pockets = out->json = pool_lcm_empty;
+	if (def == NULL) {
+		return 0;
+	}
+	const pool_table_def *t = &def->table;
+	out->utime = utime;
+	out->shot_id = shot_id;
+	out->pockets = pool_lcm_name_or_empty(pool_pockets_model_name(t->pockets));
+	out->length = t->length;
+	out->width = t->width;
+	out->cushion_height = t->cushion_height;
+	out->corner_mouth = t->corner_mouth;
+	out->side_mouth = t->side_mouth;
+	if (t->pockets == POOL_POCKETS_JAWS) { // the other models read no geometry beyond the mouths
+		// Degrees by the result file's expression, so the two agree to the bit.
+		out->corner_cut_angle = t->corner_cut_angle * 180.0 / 3.14159265358979323846;
+		out->side_cut_angle = t->side_cut_angle * 180.0 / 3.14159265358979323846;
+		out->corner_jaw_radius = t->corner_jaw_radius;
+		out->side_jaw_radius = t->side_jaw_radius;
+		out->corner_shelf = t->corner_shelf;
+		out->side_shelf = t->side_shelf;
+		out->corner_hole_radius = t->corner_hole_radius;
+		out->side_hole_radius = t->side_hole_radius;
+	}
+	out->ball_radius = def->params.ball_radius;
+	pool_jw w;
+	pool_jw_init(&w, false);
+	pool_jw_object(&w, false);
+	pool_jw_sim_setup(&w, def);
+	pool_jw_end(&w, '}');
+	char *json = pool_jw_finish(&w);
+	if (json == NULL) {
+		return -1;
+	}
+	json[strcspn(json, "\n")] = '\0';
+	out->json = json;
+	return 0;
+}
+
+void pool_lcm_table_release(pool_lcm_table_t *msg)
+{
+	if (msg->json != pool_lcm_empty) {
+		free(msg->json);
+	}
+	msg->json = pool_lcm_empty;
+}
+
+static char *pool_lcm_part_name(const pool_event *event)
+{
+	return event->type == POOL_EVENT_BALL_CUSHION && event->part != POOL_PART_NONE
+	           ? pool_lcm_name_or_empty(pool_cushion_part_name(event->part))
+	           : pool_lcm_empty;
+}
+
+int pool_lcm_event2_fill(const pool_sim *sim, int seq, int64_t shot_id, int64_t utime,
+                         pool_lcm_event2_t *out)
+{
+	memset(out, 0, sizeof *out);
+	out->utime = utime;
+	out->part = pool_lcm_empty;
+	if (pool_lcm_event_fill(sim, seq, shot_id, utime, &out->event) != 0) {
+		return -1;
+	}
+	int count = 0;
+	const pool_event *events = pool_sim_events(sim, &count);
+	out->part = pool_lcm_part_name(&events[seq]);
+	return 0;
+}
+
+void pool_lcm_event2_release(pool_lcm_event2_t *msg)
+{
+	pool_lcm_event_release(&msg->event);
+}
+
+int pool_lcm_shot2_fill(const pool_lcm_shot_t *shot, const pool_sim *sim, const pool_sim_def *def,
+                        const pool_game_state *game, pool_lcm_shot2_t *out)
 {
 	memset(out, 0, sizeof *out);
 	out->utime = shot->utime;
 	out->shot = *shot;
 	out->game_rules = out->game_outcome = out->game_reason = out->game_json = pool_lcm_empty;
-	if (game == NULL || sim == NULL) {
+	out->table.pockets = out->table.json = pool_lcm_empty;
+	// The parts, parallel to the shot's events (none without the sim that ran them).
+	int count = 0;
+	const pool_event *events = sim != NULL ? pool_sim_events(sim, &count) : NULL;
+	if (shot->num_events > 0 && sim != NULL) {
+		if (count != shot->num_events) {
+			return -1;
+		}
+		out->event_parts = calloc((size_t)count, sizeof *out->event_parts);
+		if (out->event_parts == NULL) {
+			return -1;
+		}
+		out->num_event_parts = count;
+		for (int k = 0; k < count; ++k) {
+			out->event_parts[k] = pool_lcm_part_name(&events[k]);
+		}
+	}
+	if (def != NULL) {
+		if (pool_lcm_table_fill(def, shot->shot_id, shot->utime, &out->table) != 0) {
+			pool_lcm_shot2_release(out);
+			return -1;
+		}
+		out->has_table = 1;
+	}
+	if (game == NULL || sim == NULL || def == NULL) {
 		return 0;
 	}
 	const pool_game_shot judged_shot = pool_game_shot_of_sim(sim);
 	pool_game_result r;
-	if (pool_game_judge(game, &judged_shot, table, &r, NULL) != POOL_OK) {
+	if (pool_game_judge(game, &judged_shot, &def->table, &r, NULL) != POOL_OK) {
+		pool_lcm_shot2_release(out);
 		return -1;
 	}
 	out->game_rules = pool_lcm_name_or_empty(pool_game_rules_name(game->rules));
@@ -371,8 +474,12 @@ void pool_lcm_shot2_release(pool_lcm_shot2_t *msg)
 	if (msg->game_json != pool_lcm_empty) {
 		free(msg->game_json);
 	}
+	free(msg->event_parts);
+	pool_lcm_table_release(&msg->table);
 	msg->game_fouls = NULL;
 	msg->game_pocketed = NULL;
+	msg->event_parts = NULL;
 	msg->game_json = pool_lcm_empty;
-	msg->game_num_fouls = msg->game_num_pocketed = 0;
+	msg->game_num_fouls = msg->game_num_pocketed = msg->num_event_parts = 0;
+	msg->has_table = 0;
 }

@@ -10,11 +10,13 @@
 #include "pool/game.h"
 #include "pool/pool.h"
 #include "pool_lcm_ball_state_t.h"
+#include "pool_lcm_event2_t.h"
 #include "pool_lcm_event_t.h"
 #include "pool_lcm_shot_request_t.h"
 #include "pool_lcm_shot2_t.h"
 #include "pool_lcm_shot_t.h"
 #include "pool_lcm_table_state_t.h"
+#include "pool_lcm_table_t.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -28,6 +30,10 @@ extern "C" {
 #define POOL_LCM_CHANNEL_SHOT2 "POOL_SHOT2"
 /// Channel of events as they are produced (event_t).
 #define POOL_LCM_CHANNEL_EVENT "POOL_EVENT"
+/// Channel of events with the later fields (event2_t), right after each event_t on POOL_EVENT.
+#define POOL_LCM_CHANNEL_EVENT2 "POOL_EVENT2"
+/// Channel of the table of each streamed shot (table_t), before its first event.
+#define POOL_LCM_CHANNEL_TABLE "POOL_TABLE"
 /// Channel of real-time playback frames (table_state_t).
 #define POOL_LCM_CHANNEL_STATE "POOL_STATE"
 /// Channel of engine comparison results (bench_result_t).
@@ -80,13 +86,32 @@ int pool_lcm_shot_fill_error(int64_t shot_id, int64_t request_id, int64_t utime,
 /// Frees what pool_lcm_shot_fill / pool_lcm_shot_fill_error allocated; safe on a zeroed message.
 void pool_lcm_shot_release(pool_lcm_shot_t *msg);
 
-/// Fills a shot2_t around shot (borrowed: out->shot is a shallow copy, so shot must outlive out),
-/// with the verdict of the rules when game is not NULL: the shot sim ran judged under game on
-/// table. Returns 0, or -1 when memory runs out or the rules refuse the shot.
-int pool_lcm_shot2_fill(const pool_lcm_shot_t *shot, const pool_sim *sim, const pool_game_state *game,
-                        const pool_table_def *table, pool_lcm_shot2_t *out);
+/// Fills a table message: def's table (cut angles in degrees), its balls' radius and the result
+/// file's setup as JSON. def NULL: an empty message (has no table). Returns 0, or -1 when memory
+/// runs out.
+int pool_lcm_table_fill(const pool_sim_def *def, int64_t shot_id, int64_t utime, pool_lcm_table_t *out);
 
-/// Frees what pool_lcm_shot2_fill allocated (the game fields, not the borrowed shot).
+/// Frees what pool_lcm_table_fill allocated; safe on a zeroed message.
+void pool_lcm_table_release(pool_lcm_table_t *msg);
+
+/// Fills an event2_t for processed event `seq` of sim: its event_t and the cushion's part.
+/// Returns 0, or -1 when memory runs out or seq is out of range.
+int pool_lcm_event2_fill(const pool_sim *sim, int seq, int64_t shot_id, int64_t utime,
+                         pool_lcm_event2_t *out);
+
+/// Frees what pool_lcm_event2_fill allocated.
+void pool_lcm_event2_release(pool_lcm_event2_t *msg);
+
+/// Fills a shot2_t around shot (borrowed: out->shot is a shallow copy, so shot must outlive out):
+/// the cushion's part of each of its events (from sim, whose events they are; sim may be NULL for
+/// a shot without events), the table of def (NULL: none, an error answer), and the verdict of
+/// the rules when game is not NULL: the shot sim ran judged under game on def's table. Returns 0,
+/// or -1 when memory runs out, sim's events are not the shot's, or the rules refuse the shot.
+int pool_lcm_shot2_fill(const pool_lcm_shot_t *shot, const pool_sim *sim, const pool_sim_def *def,
+                        const pool_game_state *game, pool_lcm_shot2_t *out);
+
+/// Frees what pool_lcm_shot2_fill allocated (the game fields, the parts and the table, not the
+/// borrowed shot).
 void pool_lcm_shot2_release(pool_lcm_shot2_t *msg);
 
 /// Fills a playback frame: every ball at simulated time t (s), which the sim must have reached.

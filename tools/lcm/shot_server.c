@@ -55,7 +55,7 @@
 #include "cli.h"
 #include "lcm_convert.h"
 #include "lcm_service.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #define EXIT_BAD_INPUT 2
 #define EXIT_INTERNAL 1
@@ -202,18 +202,19 @@ static bool stop_now(server_state *s)
 	return pool_lcm_stop_requested() || atomic_load(&s->stopping);
 }
 
-/// The rules a request's scenario asked for ("game"), to judge its shot in the shot2_t answer.
+/// What the shot2_t answer adds to a request's shot: its cushion parts, its table, and the verdict
+/// of the rules its scenario asked for ("game").
 typedef struct shot_game {
 	const pool_sim *sim;        // the shot, or NULL (an error answer)
 	const pool_game_state *game; // NULL without a game
-	const pool_table_def *table;
+	const pool_sim_def *def;     // the scenario's table, balls and laws
 } shot_game;
 
 // Publishes the answer on POOL_SHOT, and the same with the later fields (shot2_t) on POOL_SHOT2.
 static void publish_shot(server_state *s, const pool_lcm_shot_t *shot, bool is_error, const shot_game *g)
 {
 	pool_lcm_shot2_t shot2;
-	bool converted = pool_lcm_shot2_fill(shot, g ? g->sim : NULL, g ? g->game : NULL, g ? g->table : NULL,
+	bool converted = pool_lcm_shot2_fill(shot, g ? g->sim : NULL, g ? g->def : NULL, g ? g->game : NULL,
 	                                     &shot2) == 0 ||
 	                 pool_lcm_shot2_fill(shot, NULL, NULL, NULL, &shot2) == 0;
 	pthread_mutex_lock(&s->publish_lock);
@@ -413,7 +414,7 @@ static void answer_request(worker *w, const queued_request *q)
 	pool_result r = pool_scenario_setup(&scenario, &w->sim, &perr);
 	// The game is judged after the run: keep it (the scenario's balls are freed now).
 	const pool_game_state game = scenario.game;
-	const pool_table_def table = scenario.def.table;
+	const pool_sim_def def = scenario.def;
 	const bool has_game = scenario.has_game;
 	pool_scenario_free(&scenario);
 	if (r != POOL_OK) {
@@ -429,7 +430,7 @@ static void answer_request(worker *w, const queued_request *q)
 	}
 	switch (outcome) {
 	case RUN_DONE: {
-		const shot_game g = {w->sim, has_game ? &game : NULL, &table};
+		const shot_game g = {w->sim, has_game ? &game : NULL, &def};
 		answer_shot(w, shot_id, request_id, &g);
 		break;
 	}

@@ -23,9 +23,10 @@ struct pool_lcm_sim_publisher {
 	long next_frame;         // index of the next playback frame (t = index / playback_hz)
 	struct timespec start;   // wall clock (monotonic) of simulated t = 0
 	bool started;
-	bool has_game;           // judge the shot in shot2_t (pool_lcm_sim_publisher_set_game)
+	bool has_def;            // the shot's setup is known (pool_lcm_sim_publisher_set_shot)
+	pool_sim_def def;
+	bool has_game;           // judge the shot in shot2_t
 	pool_game_state game;
-	pool_table_def table;
 	char failure[256];       // first failure, reported by finish
 };
 
@@ -73,12 +74,22 @@ static void pool_lcm_wait_until(const pool_lcm_sim_publisher *p, double t)
 	}
 }
 
+// The shot starts: its id, the wall clock of t = 0, and its table on POOL_TABLE before any event.
 static void pool_lcm_start(pool_lcm_sim_publisher *p)
 {
 	if (!p->started) {
 		p->started = true;
 		p->shot_id = pool_lcm_utime_now();
 		clock_gettime(CLOCK_MONOTONIC, &p->start);
+		if (p->has_def) {
+			pool_lcm_table_t table;
+			if (pool_lcm_table_fill(&p->def, p->shot_id, pool_lcm_utime_now(), &table) != 0) {
+				pool_lcm_fail(p, "could not convert the table");
+			} else if (pool_lcm_table_t_publish(p->lcm, POOL_LCM_CHANNEL_TABLE, &table) != 0) {
+				pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_TABLE);
+			}
+			pool_lcm_table_release(&table);
+		}
 	}
 }
 
@@ -127,13 +138,19 @@ void pool_lcm_sim_publisher_event(const pool_sim *sim, const pool_event *event, 
 	if (seq < 0 || seq >= count) {
 		seq = p->next_seq; // not from the sim's array: trust the call order
 	}
-	pool_lcm_event_t msg;
-	if (pool_lcm_event_fill(sim, seq, p->shot_id, pool_lcm_utime_now(), &msg) != 0) {
+	// The event on POOL_EVENT, then the same with its cushion part on POOL_EVENT2.
+	pool_lcm_event2_t msg;
+	if (pool_lcm_event2_fill(sim, seq, p->shot_id, pool_lcm_utime_now(), &msg) != 0) {
 		pool_lcm_fail(p, "could not convert an event");
-	} else if (pool_lcm_event_t_publish(p->lcm, POOL_LCM_CHANNEL_EVENT, &msg) != 0) {
-		pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_EVENT);
+	} else {
+		if (pool_lcm_event_t_publish(p->lcm, POOL_LCM_CHANNEL_EVENT, &msg.event) != 0) {
+			pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_EVENT);
+		}
+		if (pool_lcm_event2_t_publish(p->lcm, POOL_LCM_CHANNEL_EVENT2, &msg) != 0) {
+			pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_EVENT2);
+		}
 	}
-	pool_lcm_event_release(&msg);
+	pool_lcm_event2_release(&msg);
 	p->next_seq = seq + 1;
 }
 
@@ -155,7 +172,8 @@ int pool_lcm_sim_publisher_finish(pool_lcm_sim_publisher *p, const pool_sim *sim
 			pool_lcm_fail(p, "could not publish on " POOL_LCM_CHANNEL_SHOT);
 		}
 		pool_lcm_shot2_t shot2;
-		if (pool_lcm_shot2_fill(&shot, sim, p->has_game ? &p->game : NULL, &p->table, &shot2) != 0) {
+		if (pool_lcm_shot2_fill(&shot, sim, p->has_def ? &p->def : NULL, p->has_game ? &p->game : NULL,
+		                        &shot2) != 0) {
 			pool_lcm_fail(p, "could not convert the shot for " POOL_LCM_CHANNEL_SHOT2);
 		} else {
 			if (pool_lcm_shot2_t_publish(p->lcm, POOL_LCM_CHANNEL_SHOT2, &shot2) != 0) {
@@ -172,13 +190,16 @@ int pool_lcm_sim_publisher_finish(pool_lcm_sim_publisher *p, const pool_sim *sim
 	return 0;
 }
 
-void pool_lcm_sim_publisher_set_game(pool_lcm_sim_publisher *p, const pool_game_state *game,
-                                     const pool_table_def *table)
+void pool_lcm_sim_publisher_set_shot(pool_lcm_sim_publisher *p, const pool_sim_def *def,
+                                     const pool_game_state *game)
 {
-	p->has_game = game != NULL;
-	if (game != NULL) {
+	p->has_def = def != NULL;
+	if (def != NULL) {
+		p->def = *def;
+	}
+	p->has_game = def != NULL && game != NULL;
+	if (p->has_game) {
 		p->game = *game;
-		p->table = *table;
 	}
 }
 

@@ -1,5 +1,6 @@
-// Live publication of a shot while pool-sim simulates it: each event on POOL_EVENT as it is
-// produced, optional real-time playback frames on POOL_STATE, the finished shot on POOL_SHOT.
+// Live publication of a shot while pool-sim simulates it: its table on POOL_TABLE, each event on
+// POOL_EVENT (and with its cushion part on POOL_EVENT2) as it is produced, optional real-time
+// playback frames on POOL_STATE, the finished shot on POOL_SHOT and POOL_SHOT2.
 // pool-sim calls this only when built with LCM (POOL_HAVE_LCM).
 #ifndef POOL_TOOLS_LCM_SIM_PUBLISH_H
 #define POOL_TOOLS_LCM_SIM_PUBLISH_H
@@ -28,14 +29,15 @@ pool_lcm_sim_publisher *pool_lcm_sim_publisher_create(const char *url, double pl
                                                       char *err, size_t err_size);
 
 /// Per-event hook (pool-sim's sim_event_hook shape; user is the publisher): publishes the event
-/// on POOL_EVENT; with playback, first publishes the frames before it, each at its wall time.
+/// on POOL_EVENT and POOL_EVENT2 (the table first, on the shot's first event); with playback, first publishes the frames before it, each at its wall time.
 /// Call it for every event in order, the strike included, right after the sim produced it.
 void pool_lcm_sim_publisher_event(const pool_sim *sim, const pool_event *event, void *user);
 
-/// The rules to judge the shot under (a scenario's "game") for the shot2_t published on
-/// POOL_SHOT2; game NULL: none (the default).
-void pool_lcm_sim_publisher_set_game(pool_lcm_sim_publisher *publisher, const pool_game_state *game,
-                                     const pool_table_def *table);
+/// The shot's setup, before its first event: def's table goes on POOL_TABLE before the first event
+/// and into the shot2_t on POOL_SHOT2, with the verdict of the rules when game (a scenario's
+/// "game") is not NULL. Without it (the default) neither table nor verdict is published.
+void pool_lcm_sim_publisher_set_shot(pool_lcm_sim_publisher *publisher, const pool_sim_def *def,
+                                     const pool_game_state *game);
 
 /// After the last event: the remaining playback frames up to pool_sim_time, then the shot on
 /// POOL_SHOT and on POOL_SHOT2 (shot2_t: the same with the game's verdict). Returns 0, or -1 with a message in err (the first failure of the whole shot).

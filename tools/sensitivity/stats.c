@@ -19,7 +19,7 @@
 
 #include "study.h"
 
-#define SENS_RAD_TO_DEG (180.0 / POOL_BATCH_PI)
+#define SENS_RAD_TO_DEG (180.0 / 3.14159265358979323846)
 
 double sens_chi2_2dof(void) { return -2.0 * log(1.0 - SENS_CONFIDENCE); }
 

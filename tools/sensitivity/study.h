@@ -9,9 +9,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "batch_shot.h"
+#include "pool/batch.h"
 #include "pool/pool.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 #define SENS_PROGRAM "pool-sensitivity"
 

@@ -15,7 +15,7 @@
 #include "sphere_overlap.h"
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "table_geometry.h"
 
 static_assert(sizeof(btScalar) == sizeof(double),

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "pool_engine_plugin.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 namespace pool_plugin {
 

@@ -25,7 +25,7 @@
 #include <unistd.h>
 
 #include "pool_engine_plugin.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 typedef enum { OK, SEGV, ABORT, EXIT3, HANG, NAN_STATE, INF_STATE, OVERCOUNT, UNWRITTEN, BAD_EVENTS } mode;
 

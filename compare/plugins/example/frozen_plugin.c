@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "pool_engine_plugin.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 
 typedef struct frozen {
 	pool_scenario scenario; // the parsed libpool-scenario/1 document

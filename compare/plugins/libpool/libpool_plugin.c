@@ -11,7 +11,7 @@
 #include <time.h>
 
 #include "pool_engine_plugin.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 // The LINK statistics (issue 11) arrive with pool/link.h; a libpool without it has no clusters,
 // and the plugin then leaves the optional export out (its records say null).
 #if __has_include("pool/link.h")
@@ -31,8 +31,11 @@ typedef struct libpool_engine {
 	char error[256];         // last failure
 } libpool_engine;
 
+// A failed run: what the library says it met (pool_sim_last_error: a LINK step's unsolved LCP,
+// memory running out...), else the code's name.
 static int fail(libpool_engine *e, pool_result r) {
-	snprintf(e->error, sizeof e->error, "libpool: %s", pool_result_str(r));
+	const char *said = pool_sim_last_error(e->sim);
+	snprintf(e->error, sizeof e->error, "libpool: %s", said[0] ? said : pool_result_str(r));
 	return -1;
 }
 

@@ -12,7 +12,7 @@
 #include "engine_state.h"
 #include "pool/pool.h"
 #include "pool_engine_plugin.h"
-#include "scenario.h"
+#include "pool/scenario.h"
 #include "table_geometry.h"
 
 namespace pool_ode {
