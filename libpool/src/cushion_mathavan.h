@@ -18,7 +18,7 @@
 /// velocity or surface speed R |w| component). At this value the outgoing velocities differ from
 /// the same equations integrated far finer (tools/mathavan_reference.c) by at most
 /// MATHAVAN_RANDOM_WORST of the speed scale over random impacts (0.1-8 m/s, any incidence, spin
-/// and side; test_model_fidelity.c). Cost: tools/bench_models.c.
+/// and side; test_model_fidelity.c). Cost: bench/bench_models.c.
 #define POOL_MATHAVAN_TOLERANCE 1e-5
 
 /// What pool_cushion_mathavan did.
