@@ -14,15 +14,12 @@
 
 #include "pool/sim.h"
 
-/// Impulse steps over the estimated impact. The scheme (cushion_mathavan.c) is of second order
-/// while the contacts slide and of first order across stick-slip transitions; at this count,
-/// against a 64 times finer run, the rebound velocity is within 1e-3 of the impact speed and the
-/// rebound angle within 0.05 degrees at 1 m/s over incidences 0-80 degrees, stun to rolling,
-/// running and check side (test_model_fidelity.c, MATHAVAN_CONVERGENCE); over random impacts
-/// (0.1-8 m/s, any incidence, spin and side) the outgoing velocities are within 2.3e-6 of the
-/// impact's speed scale at the median and 7.4e-3 at worst, where a contact changes between stick
-/// and slip (MATHAVAN_RANDOM_*). Cost: tools/bench_models (about 6 us an impact).
-#define POOL_MATHAVAN_STEPS 128
+/// Error tolerance of each integration step, relative to the impact's speed scale (its largest
+/// velocity or surface speed R |w| component). At this value the outgoing velocities differ from
+/// the same equations integrated far finer (tools/mathavan_reference.c) by at most
+/// MATHAVAN_RANDOM_WORST of the speed scale over random impacts (0.1-8 m/s, any incidence, spin
+/// and side; test_model_fidelity.c). Cost: bench/bench_models.c.
+#define POOL_MATHAVAN_TOLERANCE 1e-5
 
 /// What pool_cushion_mathavan did.
 typedef enum pool_mathavan_outcome {
@@ -32,10 +29,10 @@ typedef enum pool_mathavan_outcome {
 } pool_mathavan_outcome;
 
 /// Resolves the impact of ball s (on the cloth) with a cushion nose; n is the unit normal from
-/// the nose to the ball centre (pool_cushion_normal). steps: impulse steps over the estimated
-/// impact (POOL_MATHAVAN_STEPS; more for a reference). Only s->vel and s->omega change; the
+/// the nose to the ball centre (pool_cushion_normal). tolerance: of each integration step
+/// (POOL_MATHAVAN_TOLERANCE; smaller is finer and dearer). Only s->vel and s->omega change; the
 /// caller derives the motion state. Deterministic: a fixed sequence of double operations.
-pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *s, const pool_params *p, pool_vec3 n, int steps);
+pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *s, const pool_params *p, pool_vec3 n, double tolerance);
 
 /// The cushion handler's entry (cushion.c): resolves s's impact by this model when the def
 /// selects it (models.cushion) and the ball is on the cloth, and says so; false leaves s to

@@ -1,0 +1,34 @@
+// Dormand & Prince's explicit Runge-Kutta pair of orders 5 and 4 (Hairer, Nørsett & Wanner,
+// "Solving Ordinary Differential Equations I", II.5 and II.6): one step of a small system with
+// its error estimate and Shampine's dense output of order 4 inside the step. The caller owns the
+// step control and any events (cushion_mathavan.c).
+#ifndef POOL_DOPRI5_H
+#define POOL_DOPRI5_H
+
+/// Largest system a step holds.
+#define POOL_DOPRI5_MAX_DIM 8
+
+/// dy/dx at y (the systems here are autonomous); ctx: the caller's.
+typedef void (*pool_dopri5_rhs)(const void *ctx, const double *y, double *dydx);
+
+/// One step from y0 over h: its stages, the fifth-order end y1 and the estimated error (the
+/// difference from the embedded fourth-order solution).
+typedef struct pool_dopri5_step {
+	int dim;
+	double h;
+	double y0[POOL_DOPRI5_MAX_DIM], y1[POOL_DOPRI5_MAX_DIM], err[POOL_DOPRI5_MAX_DIM];
+	double k[7][POOL_DOPRI5_MAX_DIM]; ///< slopes of the stages; k[6] is the slope at y1 (first
+	                                  ///< slope of the next step)
+} pool_dopri5_step;
+
+/// Takes the step from y0 over h; k1: the slope at y0 (the previous step's k[6], or f(y0)).
+void pool_dopri5_take(pool_dopri5_rhs f, const void *ctx, int dim, const double *y0, const double *k1, double h,
+                      pool_dopri5_step *step);
+
+/// The solution at x0 + theta h, 0 <= theta <= 1 (order 4, continuous with both ends).
+void pool_dopri5_dense(const pool_dopri5_step *step, double theta, double *y);
+
+/// Component i of the solution at x0 + theta h.
+double pool_dopri5_dense_one(const pool_dopri5_step *step, double theta, int i);
+
+#endif
