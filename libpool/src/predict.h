@@ -74,6 +74,11 @@ double pool_predict_flight_shape(const pool_table_shape *shape, const pool_ball_
 double pool_predict_cushion_jaws(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
                                  pool_event_type *kind, pool_site *site);
 
+/// Pockets "jaws", a linked ball on the cloth: earliest tau in [0, T] at which its centre enters
+/// a hole (*pocket which; INFINITY, POOL_POCKET_NONE: none), the nose curve's parts ignored.
+double pool_predict_hole_jaws(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
+                              pool_pocket *pocket);
+
 /// Pockets "jaws" in flight: landing (a pocket when over a hole), a part of the nose curve at
 /// distance R (a jaw: degree 8), crossing the nose curve over the cushion (off_table), entering a
 /// hole below the nose height (pocket).

@@ -195,6 +195,32 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 	return best;
 }
 
+// A linked ball's hole: the step's LCP holds it off every part of the nose curve, but nothing
+// but this holds it up over a hole. Every pocket's hole is searched, whatever the parts: a
+// part contact found first (the ball is pressed on a facing or a jaw as it slides into the
+// hole) is the LCP's, no event, and must not hide the hole behind it.
+double pool_predict_hole_jaws(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
+                              pool_pocket *pocket) {
+	const path q = {s->pos, s->vel, pool_v3_scale(acc, 0.5)};
+	double best = INFINITY;
+	*pocket = POOL_POCKET_NONE;
+	for (int p = 0; p < 6; ++p) {
+		if (!sh->has_pocket[p])
+			continue;
+		const pool_pocket_shape *ps = &sh->pockets[p];
+		// Out of reach within the window (plan distance to the edge beyond the path's bound).
+		const double reach = (hypot(q.v.x, q.v.y) + hypot(q.a.x, q.a.y) * T) * T * (1.0 + 1e-12);
+		if (hypot(q.p.x - ps->hx, q.p.y - ps->hy) - ps->hole_radius > reach + POOL_TOUCH_TOLERANCE)
+			continue;
+		const double t = enter_circle(&q, ps->hx, ps->hy, ps->hole_radius, fmin(T, best));
+		if (t < best) {
+			best = t;
+			*pocket = (pool_pocket)p;
+		}
+	}
+	return best;
+}
+
 // ---- in flight
 
 // A flying ball against a jaw of radius r > 0 (a horizontal circle at the nose height): the

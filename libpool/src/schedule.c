@@ -94,12 +94,16 @@ static void begin_own(pool_sim *sim, int i, const pool_ball_state *s, double t) 
 			}
 			return;
 		}
-		const double tc = pool_predict_cushion_shape(shape, s, b->seg.acc, window, &kind, &site);
-		if (tc < window && kind == POOL_EVENT_POCKET) {
+		// Only the holes: a part of the nose curve the ball touches or will touch within the
+		// window is the LCP's (no event), and taken as the earliest it would hide a hole the
+		// ball slides into during the step (pool_predict_hole_jaws).
+		pool_pocket pocket;
+		const double tc = pool_predict_hole_jaws(shape, s, b->seg.acc, window, &pocket);
+		if (tc < window) {
 			b->own_time = t + tc;
 			b->own_kind = POOL_EVENT_POCKET;
-			b->own_rail = site.rail;
-			b->own_pocket = site.pocket;
+			b->own_rail = POOL_RAIL_NONE;
+			b->own_pocket = pocket;
 		}
 		return;
 	}
