@@ -235,7 +235,7 @@ int main(int argc, char **argv) {
 			at[i].vel = (pool_vec3){v * sin(a), v * cos(a), 0.0};
 			at[i].omega = (pool_vec3){-at[i].vel.y / R, at[i].vel.x / R, 0.0};
 		}
-		char what[16];
+		char what[24]; // (room for any int the compiler can imagine)
 		snprintf(what, sizeof what, "roll %2d", deg);
 		time_law(what, name, 1, p, at, n);
 	}
