@@ -408,12 +408,19 @@ static pool_result cut_cluster(pool_link *link, int c, double t) {
 }
 
 pool_result pool_link_cut(pool_link *link, const int *inv, int m, double t) {
+	// Room for every cut and for the event that cuts them, recorded right after: at the event
+	// limit the shot stops before the event, not after its cuts with the event one too many.
+	int cuts = 0;
+	for (int k = 0; k < m; ++k) {
+		const int c = link->cluster_of[inv[k]];
+		cuts += c >= 0 && link->clusters[c].in_step && !(k == 1 && c == link->cluster_of[inv[0]]);
+	}
+	if (cuts > 0 && !has_room(link, cuts + 1))
+		return POOL_OK;
 	for (int k = 0; k < m; ++k) {
 		const int c = link->cluster_of[inv[k]];
 		if (c < 0 || !link->clusters[c].in_step)
 			continue;
-		if (!has_room(link, 1))
-			return POOL_OK;
 		const pool_result r = cut_cluster(link, c, t);
 		if (r)
 			return r;

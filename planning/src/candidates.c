@@ -267,6 +267,7 @@ int aim_candidates(aim_search *s) {
 			}
 		}
 	}
-	qsort(s->cands, (size_t)s->count, sizeof *s->cands, by_difficulty);
+	if (s->count > 1) // (no candidates: cands may be NULL, which qsort must not be given)
+		qsort(s->cands, (size_t)s->count, sizeof *s->cands, by_difficulty);
 	return blocked;
 }

@@ -876,6 +876,48 @@ static void test_regression_subnormal_mass_is_rejected(void **state) {
 	assert_int_equal(stats.accepted, 1);
 }
 
+// Mutant 1684 of the fuzz (seed "params"): 51 balls in two rows, 40 of them touching nothing
+// but their neighbours 3.2 mm away, struck along the row. At max_events 1000 a ball-ball collision
+// cut a LINK step with one event of room left, and both were recorded: 1001 events (the sanitizer
+// build's world check caught it). Every limit around it must hold: never more events than
+// max_events, and a shot cut there says so.
+static void test_regression_event_limit_with_a_cut_step(void **state) {
+	(void)state;
+	char doc[4096];
+	size_t len = (size_t)snprintf(doc, sizeof doc,
+	    "{\"format\": \"libpool-scenario/1\", \"params\": {\"g\": 9.8, \"mu_slide\": 0.25, \"mu_roll\": 0.012,"
+	    " \"mu_spin\": 0.02, \"mu_ball\": 0.05, \"e_ball\": 0.93, \"mu_cushion\": 0.15, \"e_cushion\": 0.8,"
+	    " \"mu_table\": 0.3, \"e_table\": 0.6, \"ball_radius\": 0.0286, \"ball_mass\": 0.16, \"cue_mass\": 0.5},"
+	    " \"balls\": [");
+	for (int i = 0; i < 51; ++i)
+		len += (size_t)snprintf(doc + len, sizeof doc - len, "%s{\"id\": %d, \"pos\": [%.3f, %.3f]}", i ? "," : "", i,
+		                        0.05 + 0.06 * (i % 40), 0.05 + 0.06 * (i / 40));
+	len += (size_t)snprintf(doc + len, sizeof doc - len,
+	                        "], \"strike\": {\"ball\": 0, \"speed\": 4, \"phi\": 2, \"a\": -0.01, \"b\": 0.015}}");
+	assert_true(len < sizeof doc);
+	int cut_at_limit = 0;
+	for (int limit = 940; limit <= 1060; limit += 4) {
+		pool_scenario s;
+		char err[256];
+		assert_int_equal(pool_scenario_parse(doc, len, &s, err, sizeof err), 0);
+		s.def.max_events = limit;
+		pool_sim *sim = NULL;
+		pool_error e = {{0}};
+		assert_int_equal(pool_scenario_setup(&s, &sim, &e), POOL_OK);
+		assert_int_equal(pool_sim_run(sim), POOL_OK);
+		int count = 0;
+		pool_sim_events(sim, &count);
+		if (count > limit)
+			fail_msg("max_events %d: %d events recorded", limit, count);
+		assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_MAX_EVENTS);
+		cut_at_limit += count < limit; // (stopped short: the next event and its cuts had no room)
+		pool_sim_destroy(sim);
+		pool_scenario_free(&s);
+	}
+	print_message("[ limits   ] 31 limits from 940 to 1060, %d stopped short of theirs to keep an event whole\n",
+	              cut_at_limit);
+}
+
 static void test_mutants(void **state) {
 	(void)state;
 	long cases = fuzz_case_count();
@@ -925,6 +967,7 @@ int main(void) {
 		cmocka_unit_test(test_every_field_at_extremes),
 		cmocka_unit_test(test_regression_empty_key_is_named),
 		cmocka_unit_test(test_regression_subnormal_mass_is_rejected),
+		cmocka_unit_test(test_regression_event_limit_with_a_cut_step),
 		cmocka_unit_test(test_mutants),
 	};
 	return cmocka_run_group_tests(tests, setup, teardown);
