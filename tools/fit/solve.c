@@ -15,6 +15,7 @@
 #include "fit.h"
 #include "least_squares.h"
 #include "profile.h"
+#include "splitmix.h"
 
 // The first horizon (s of tracks): about the time a shot's first collision takes, so the first
 // stage sees the struck ball alone and fixes its direction and speed. Each stage sees this much
@@ -51,11 +52,7 @@ static double now_s(void) {
 
 /// A uniform deviate in (0, 1) from a splitmix64 stream (the random starts need no more).
 static double uniform(uint64_t *state) {
-	uint64_t z = (*state += 0x9E3779B97F4A7C15ULL);
-	z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-	z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-	z ^= z >> 31;
-	return ((double)(z >> 11) + 0.5) / 9007199254740992.0;
+	return pool_splitmix_uniform(state);
 }
 
 /// A standard normal deviate (Box-Muller).

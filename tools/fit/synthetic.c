@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fit.h"
+#include "splitmix.h"
 
 typedef struct rng {
 	uint64_t state;
@@ -15,11 +16,7 @@ typedef struct rng {
 } rng;
 
 static double uniform(rng *r) {
-	uint64_t z = (r->state += 0x9E3779B97F4A7C15ULL);
-	z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-	z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-	z ^= z >> 31;
-	return ((double)(z >> 11) + 0.5) / 9007199254740992.0;
+	return pool_splitmix_uniform(&r->state);
 }
 
 static double between(rng *r, double lo, double hi) { return lo + (hi - lo) * uniform(r); }
