@@ -475,6 +475,19 @@ static int fail_lib_ball(parse_ctx *ctx, int index, pool_result code, const pool
 	return fail_lib(ctx, path, code, e);
 }
 
+// The scenario's strike on sim (its struck ball in place): the cue's parameters with the
+// library's own rules, then the strike itself; "strike" names what the library refused.
+static int check_strike(parse_ctx *ctx, pool_sim *sim, const pool_scenario *s) {
+	pool_error e = {{0}};
+	pool_vec3 vel, omega;
+	pool_result r = pool_strike_velocities(&s->def.params, &s->strike, &vel, &omega, &e);
+	if (r == POOL_OK) {
+		memset(&e, 0, sizeof e);
+		r = pool_sim_strike(sim, s->strike_ball, &s->strike, &e);
+	}
+	return r == POOL_OK ? 0 : fail_lib(ctx, "strike", r, &e);
+}
+
 // Airborne scenarios (options.airborne = true): the rules the library has for planar balls are
 // applied to each ball's
 // projection on the cloth, one ball per throw-away planar simulation (finite numbers, speed
@@ -550,17 +563,7 @@ static int check_airborne(parse_ctx *ctx, pool_scenario *s) {
 			r = pool_sim_reset(sim, &planar, &e);
 			if (r == POOL_OK)
 				r = pool_sim_add_ball(sim, &projected, &e);
-			pool_vec3 vel, omega;
-			if (r == POOL_OK) {
-				memset(&e, 0, sizeof e);
-				r = pool_strike_velocities(&s->def.params, &s->strike, &vel, &omega, &e);
-			}
-			if (r == POOL_OK) {
-				memset(&e, 0, sizeof e);
-				r = pool_sim_strike(sim, s->strike_ball, &s->strike, &e);
-			}
-			if (r != POOL_OK)
-				status = fail_lib(ctx, "strike", r, &e);
+			status = r == POOL_OK ? check_strike(ctx, sim, s) : fail_lib(ctx, "strike", r, &e);
 		}
 	}
 	pool_sim_destroy(sim);
@@ -608,17 +611,8 @@ static int check_with_sim(parse_ctx *ctx, const pool_scenario *s) {
 			status = fail_lib(ctx, path, r, &e);
 		}
 	}
-	if (status == 0 && s->has_strike) {
-		memset(&e, 0, sizeof e);
-		pool_vec3 vel, omega;
-		r = pool_strike_velocities(&s->def.params, &s->strike, &vel, &omega, &e);
-		if (r == POOL_OK) {
-			memset(&e, 0, sizeof e);
-			r = pool_sim_strike(sim, s->strike_ball, &s->strike, &e);
-		}
-		if (r != POOL_OK)
-			status = fail_lib(ctx, "strike", r, &e);
-	}
+	if (status == 0 && s->has_strike)
+		status = check_strike(ctx, sim, s);
 	pool_sim_destroy(sim);
 	return status;
 }
