@@ -87,6 +87,17 @@ typedef struct fit_shot {
 /// ball's positions over evenly spaced frames (robust: their median); NAN with too few.
 double fit_track_noise(const fit_shot *shots, int count);
 
+/// How each step of the least squares solves its linear system (least_squares.c).
+typedef enum fit_linear_kind {
+	FIT_LINEAR_AUTO = 0, ///< dense up to FIT_DENSE_MAX_PARAMS parameters, else normal equations by blocks
+	FIT_LINEAR_DENSE,    ///< QR of the dense n x p Jacobian (gsl_multifit_nlinear)
+	FIT_LINEAR_BLOCKS,   ///< Cholesky of J^T J built shot by shot (gsl_multilarge_nlinear)
+} fit_linear_kind;
+
+/// Parameters up to which FIT_LINEAR_AUTO factorises the dense Jacobian: one shot's strike and a
+/// few table parameters, where QR's robustness costs nothing.
+#define FIT_DENSE_MAX_PARAMS 16
+
 /// The whole problem: the shots, which parameters are free, the parameter vector's layout.
 /// x = [free table parameters..., shot 0's free parameters..., shot 1's ...].
 typedef struct fit_problem {
@@ -107,6 +118,7 @@ typedef struct fit_problem {
 	                           ///< (the profile intervals, profile.c)
 	double horizon;            ///< s of tracks time: later observations count for nothing (their rows
 	                           ///< are 0) and the shots are simulated only so far; INFINITY for all
+	fit_linear_kind linear;    ///< how each step's linear system is solved
 } fit_problem;
 
 /// Parses --fit into the free sets alone; 0 or a usage error (printed).
@@ -196,12 +208,36 @@ void fit_clamp(const fit_problem *pb, const double *x, double *clamped);
 pool_result fit_residuals(const fit_problem *pb, const double *x, fit_worker *workers, double *f,
                           uint64_t *signatures);
 
-/// The Jacobian (n x p, row-major) at x by differences that do not cross an event change: a
-/// central difference where both sides keep the collision sequence of x (signatures, from
-/// fit_residuals at x, which also gave the rows f), one-sided where only one does, and a smaller
-/// step where neither does. Only the shots a parameter touches are simulated again.
+/// The Jacobian by blocks. A shot's residual rows move only with the table's free parameters and
+/// the shot's own strike, so row i of shot s is stored as width = table_free + shot_free numbers:
+/// the table's columns, then shot s's (fit_jacobian_column). The penalty rows (one per parameter)
+/// are p x p. Storage and every product are linear in the number of shots; a dense n x p matrix
+/// would make each step's factorisation cost n p^2, quadratic in them (docs/planning.md).
+typedef struct fit_jacobian_blocks {
+	double *rows;    ///< n_obs x width, row-major
+	double *penalty; ///< p x p, row-major
+} fit_jacobian_blocks;
+
+/// The numbers stored per residual row (table_free + shot_free), and the block column of x[j].
+int fit_jacobian_width(const fit_problem *pb);
+int fit_jacobian_column(const fit_problem *pb, int j);
+
+/// The Jacobian at x by differences that do not cross an event change: a central difference where
+/// both sides keep the collision sequence of x (signatures, from fit_residuals at x, which also
+/// gave the rows f), one-sided where only one does, and a smaller step where neither does. Each
+/// parameter moves only the shots it belongs to (a table parameter: all of them), so only those
+/// are simulated again: 2 (table_free + shot_free) simulations per shot.
 pool_result fit_jacobian(const fit_problem *pb, const double *x, const double *f, const uint64_t *signatures,
-                         fit_worker *workers, double *jac);
+                         fit_worker *workers, fit_jacobian_blocks *J);
+
+/// The dense Jacobian (n x p, row-major) of the blocks.
+void fit_jacobian_dense(const fit_problem *pb, const fit_jacobian_blocks *J, double *dense);
+
+/// The normal equations of the blocks: JTJ = J^T J (p x p, row-major, both triangles) and
+/// g = J^T f (p), in n_obs width^2 operations. Either output may be NULL; scratch: room for p
+/// indices.
+void fit_jacobian_normal(const fit_problem *pb, const fit_jacobian_blocks *J, const double *f, double *JTJ,
+                         double *g, size_t *scratch);
 
 /// Creates count workers; frees them.
 int fit_workers_create(const fit_problem *pb, long count, fit_worker **out);

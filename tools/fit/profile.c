@@ -64,14 +64,8 @@ static void reported(const fit_problem *pb, const double *x, double *values, gsl
 	}
 }
 
-/// (J^T J)^-1 at x (internal units, without sigma^2) into cov; the Jacobian stays in ls->jac.
-static int covariance(fit_ls *ls, const double *x, gsl_matrix *cov) {
-	if (fit_ls_jacobian(ls, x) != 0)
-		return -1;
-	gsl_matrix_view J = gsl_matrix_view_array(ls->jac, ls->problem.n, (size_t)ls->problem.p);
-	gsl_multifit_nlinear_covar(&J.matrix, 0.0, cov);
-	return 0;
-}
+/// (J^T J)^-1 at x (internal units, without sigma^2) into cov.
+static int covariance(fit_ls *ls, const double *x, gsl_matrix *cov) { return fit_ls_covariance(ls, x, cov); }
 
 /// Wald estimates at x: reported values, standard errors, value +- q se; correlations when corr.
 /// shown receives the covariance (without sigma^2) of the reported values.

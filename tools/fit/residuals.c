@@ -251,12 +251,18 @@ pool_result fit_residuals(const fit_problem *pb, const double *x, fit_worker *wo
 
 // ---- the Jacobian -----------------------------------------------------------------------------
 
+int fit_jacobian_width(const fit_problem *pb) { return pb->table_free + pb->shot_free; }
+
+int fit_jacobian_column(const fit_problem *pb, int j) {
+	return j < pb->table_free ? j : pb->table_free + (j - pb->table_free) % pb->shot_free;
+}
+
 /// One task: parameter j on shot s.
 typedef struct jacobian_job {
 	const fit_problem *pb;
 	const double *x;
 	const uint64_t *signatures;
-	double *jac;
+	fit_jacobian_blocks *J;
 	const size_t *offset;
 	const double *base;       ///< the residual rows at x (n)
 	int *task_param, *task_shot;
@@ -274,6 +280,8 @@ static void jacobian_task(parallel *job, long task, fit_worker *w) {
 	double *plus = xs + pb->p, *minus = plus + 2 * pb->shots[s].obs_count;
 	size_t rows = 2 * (size_t)pb->shots[s].obs_count;
 	const double *base = c->base + c->offset[s];
+	const size_t width = (size_t)fit_jacobian_width(pb);
+	double *column = c->J->rows + c->offset[s] * width + (size_t)fit_jacobian_column(pb, j);
 	memcpy(xs, c->x, (size_t)pb->p * sizeof *xs);
 	// (Far from zero the step grows with the value, so it stays far above the value's rounding.)
 	double h = FIT_DIFF_STEP * fmax(info->scale, 1e-3 * fabs(c->x[j]));
@@ -297,20 +305,21 @@ static void jacobian_task(parallel *job, long task, fit_worker *w) {
 			         : up         ? (plus[i] - base[i]) / h
 			         : down       ? (base[i] - minus[i]) / h
 			                      : (plus[i] - minus[i]) / (2 * h);
-			c->jac[(c->offset[s] + i) * (size_t)pb->p + (size_t)j] = d;
+			column[i * width] = d;
 		}
 		return;
 	}
 }
 
 pool_result fit_jacobian(const fit_problem *pb, const double *x, const double *base, const uint64_t *signatures,
-                         fit_worker *workers, double *jac) {
-	const size_t p = (size_t)pb->p, n = pb->n;
-	memset(jac, 0, n * p * sizeof *jac);
+                         fit_worker *workers, fit_jacobian_blocks *J) {
+	const size_t p = (size_t)pb->p;
+	memset(J->rows, 0, pb->n_obs * (size_t)fit_jacobian_width(pb) * sizeof *J->rows);
+	memset(J->penalty, 0, p * p * sizeof *J->penalty);
 	size_t *offset = row_offsets(pb);
-	long tasks = 0;
-	for (int j = 0; j < pb->p; ++j)
-		tasks += j < pb->table_free ? pb->shot_count : 1;
+	// Each shot's rows move only with the table's parameters and the shot's own: a task is one
+	// parameter on one shot, so a Jacobian costs 2 (table_free + shot_free) simulations per shot.
+	long tasks = (long)pb->shot_count * fit_jacobian_width(pb);
 	int *task_param = malloc((size_t)tasks * sizeof *task_param);
 	int *task_shot = malloc((size_t)tasks * sizeof *task_shot);
 	long most = 0;
@@ -332,7 +341,7 @@ pool_result fit_jacobian(const fit_problem *pb, const double *x, const double *b
 					task_shot[t++] = s;
 				}
 		}
-		jacobian_job c = {pb, x, signatures, jac, offset, base, task_param, task_shot, scratch, workers};
+		jacobian_job c = {pb, x, signatures, J, offset, base, task_param, task_shot, scratch, workers};
 		parallel job = {.count = tasks, .fn = jacobian_task, .ctx = &c};
 		r = run_parallel(&job, workers, pb->threads);
 	}
@@ -349,7 +358,7 @@ pool_result fit_jacobian(const fit_problem *pb, const double *x, const double *b
 				fit_penalty_rows(pb, xs, minus);
 				xs[j] = x[j];
 				for (size_t i = 0; i < p; ++i)
-					jac[(pb->n_obs + i) * p + j] = (plus[i] - minus[i]) / (2 * h);
+					J->penalty[i * p + j] = (plus[i] - minus[i]) / (2 * h);
 			}
 		} else {
 			r = POOL_ERR_OUT_OF_MEMORY;
