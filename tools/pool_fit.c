@@ -31,6 +31,7 @@ typedef struct fit_cli {
 	const char *spec;
 	fit_options solver;
 	long threads;
+	fit_linear_kind linear;
 	bool have_ball;
 	int32_t ball;
 	const char *prefix;
@@ -42,8 +43,8 @@ typedef struct fit_cli {
 static const char usage_text[] =
 	"usage: pool-fit SCENARIO.json TRACKS.csv [SCENARIO.json TRACKS.csv ...] [--fit NAMES]\n"
 	"                [--sigma M] [--starts N] [--retries N] [--max-iterations N] [--seed S] [--ball ID]\n"
-	"                [--intervals auto|wald|profile] [--threads N] [-o PREFIX] [--summary]\n"
-	"                [--quiet] [--max-input BYTES]\n"
+	"                [--intervals auto|wald|profile] [--linear auto|dense|blocks] [--threads N]\n"
+	"                [-o PREFIX] [--summary] [--quiet] [--max-input BYTES]\n"
 	"\n"
 	"Fits the strike and/or the table's parameters to observed ball tracks by nonlinear least\n"
 	"squares on libpool's simulated tracks, and prints the fitted values with standard errors and\n"
@@ -80,6 +81,9 @@ static const char usage_text[] =
 	"                    refitted over the other parameters, rises by q^2 sigma^2), from the\n"
 	"                    standard errors (wald: value +- q se), or auto (default: profile up to 12\n"
 	"                    parameters)\n"
+	"  --linear K        how each step's linear system is solved: dense (QR of the whole\n"
+	"                    Jacobian), blocks (J^T J built shot by shot, Cholesky: linear in the\n"
+	"                    number of shots), or auto (default: dense up to 16 parameters)\n"
 	"  --threads N       worker threads (default: the number of online CPUs); the results do\n"
 	"                    not depend on it\n"
 	"  -o, --output PREFIX  also write PREFIX.json and PREFIX.svg (observed against fitted tracks)\n"
@@ -126,7 +130,7 @@ static int parse_options(int argc, char **argv, fit_cli *o) {
 		}
 		static const char *const with_value[] = {"--fit", "--sigma", "--starts", "--max-iterations", "--seed",
 		                                         "--ball", "--threads", "-o", "--output", "--max-input",
-		                                         "--intervals", "--retries"};
+		                                         "--intervals", "--retries", "--linear"};
 		bool known = false;
 		for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; ++k)
 			known = known || strcmp(a, with_value[k]) == 0;
@@ -148,6 +152,15 @@ static int parse_options(int argc, char **argv, fit_cli *o) {
 				o->solver.profile = FIT_INTERVALS_PROFILE;
 			else
 				return pool_cli_usage_error(PROGRAM, "--intervals: '%s' is not auto, wald or profile", pool_cli_arg(v));
+		} else if (strcmp(a, "--linear") == 0) {
+			if (strcmp(v, "auto") == 0)
+				o->linear = FIT_LINEAR_AUTO;
+			else if (strcmp(v, "dense") == 0)
+				o->linear = FIT_LINEAR_DENSE;
+			else if (strcmp(v, "blocks") == 0)
+				o->linear = FIT_LINEAR_BLOCKS;
+			else
+				return pool_cli_usage_error(PROGRAM, "--linear: '%s' is not auto, dense or blocks", pool_cli_arg(v));
 		} else if (strcmp(a, "--sigma") == 0) {
 			if (!pool_cli_parse_double(v, &x) || x <= 0.0 || x > 1.0)
 				return pool_cli_usage_error(PROGRAM, "--sigma: '%s' is not a position noise in metres (above 0, "
@@ -289,6 +302,7 @@ int main(int argc, char **argv) {
 		status = fit_problem_setup(&pb, o.spec);
 	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
 	pb.threads = o.threads ? o.threads : cpus > 0 ? cpus : 1;
+	pb.linear = o.linear;
 	fit_solution sol = {0};
 	if (!status)
 		status = fit_solve(&pb, &o.solver, &sol);

@@ -164,6 +164,15 @@ class ClosedForm(unittest.TestCase):
             self.assertAlmostEqual(doc["shots"][k]["strike"]["speed"], param(doc, "speed", k)["value"])
             wrapped = (phi + 180.0) % 360.0 - 180.0  # pool-fit reports phi in (-180, 180]
             near(self, param(doc, "phi", k), wrapped, "phi")
+        # The normal equations built shot by shot (what fits of more than 16 parameters use) reach
+        # the same minimum, standard errors and intervals as the dense QR: the same problem solved
+        # by other linear algebra, so they differ by the solver's tolerance, not by a noise's worth.
+        blocks = fit(*paths, "--fit", "speed,phi,mu_slide,mu_roll", "--linear", "blocks")
+        for p, q in zip(doc["parameters"], blocks["parameters"]):
+            self.assertEqual((p["name"], p["shot"]), (q["name"], q["shot"]))
+            for a, b in ((p["value"], q["value"]), (p["ci95"][0], q["ci95"][0]), (p["ci95"][1], q["ci95"][1])):
+                self.assertLessEqual(abs(a - b), 1e-3 * p["se"], "%s: %r %r" % (p["name"], p, q))
+            self.assertAlmostEqual(q["se"] / p["se"], 1.0, delta=1e-4)
 
     def test_exact_tracks_give_the_truth(self):
         """Without noise the closed forms and libpool agree to rounding: the fit finds the values
@@ -344,6 +353,7 @@ class BadInput(unittest.TestCase):
         self.expect([self.scenario, self.tracks, "--sigma", "-1"], "--sigma")
         self.expect([self.scenario, self.tracks, "--starts", "0"], "--starts")
         self.expect([self.scenario, self.tracks, "--intervals", "exact"], "--intervals")
+        self.expect([self.scenario, self.tracks, "--linear", "sparse"], "--linear: 'sparse' is not auto, dense or blocks")
         self.expect([self.scenario, self.tracks, "--bogus"], "unknown option '--bogus'")
         self.expect([self.scenario, self.tracks, "--threads"], "needs a value")
         nostrike = write("nostrike.json", scenario([{"id": 0, "pos": [0.5, 0.5]}]))
