@@ -293,6 +293,7 @@ typedef struct fit_options {
 	unsigned long seed; ///< of the perturbed starts
 	int retries;       ///< more staged starts, from random points near the start, while the best
 	                   ///< fit's rms is above FIT_RETRY_RATIO times the tracks' own noise
+	bool no_axis_starts; ///< skip the starts along the covariance's longest axes (solve.c)
 	bool quiet;
 } fit_options;
 
