@@ -24,7 +24,7 @@
 #define TRIALS_FAILED_RMS 1.5
 
 static const char usage_text[] =
-	"usage: pool-fit-trials [--trials N] [--sigma M[,M...]] [--rate HZ] [--fit NAMES] [--seed S]\n"
+	"usage: pool-fit-trials [--trials N] [--first K] [--sigma M[,M...]] [--rate HZ] [--fit NAMES] [--seed S]\n"
 	"                       [--models SET] [--threads N] [--min-coverage P] [--shrink-tolerance T]\n"
 	"                       [--verbose]\n"
 	"\n"
@@ -33,6 +33,8 @@ static const char usage_text[] =
 	"95 % interval, and the median interval width, per noise level.\n"
 	"\n"
 	"  --trials N        trials (default 200)\n"
+	"  --first K         the first trial's number (default 0): trials K to K + N - 1, each the\n"
+	"                    same shot whatever K (a trial of a campaign run again alone)\n"
 	"  --sigma LIST      position noise sd in m, comma-separated (default 0.001); the same trials\n"
 	"                    run at each level\n"
 	"  --rate HZ         frames per second of the tracks (default 100)\n"
@@ -58,6 +60,7 @@ typedef struct outcome {
 
 typedef struct trials_options {
 	long trials;
+	long first; ///< the first trial's number
 	double sigmas[TRIALS_MAX_SIGMAS];
 	int sigma_count;
 	double rate;
@@ -139,6 +142,8 @@ static int parse(int argc, char **argv, trials_options *o) {
 		long n = 0;
 		if (strcmp(a, "--trials") == 0 && pool_cli_parse_count(v, &n) && n >= 1)
 			o->trials = n;
+		else if (strcmp(a, "--first") == 0 && pool_cli_parse_count(v, &n) && n >= 0)
+			o->first = n;
 		else if (strcmp(a, "--rate") == 0 && pool_cli_parse_double(v, &o->rate) && o->rate > 0.0)
 			continue;
 		else if (strcmp(a, "--fit") == 0)
@@ -198,7 +203,7 @@ int main(int argc, char **argv) {
 		long failed = 0, unsolved = 0;
 		for (long t = 0; t < o.trials; ++t) {
 			outcome out;
-			p = run_trial(&o, t, sigma, truth, est, info, &out);
+			p = run_trial(&o, o.first + t, sigma, truth, est, info, &out);
 			if (p <= 0)
 				return POOL_EXIT_BAD_INPUT;
 			seconds += out.seconds;
@@ -211,7 +216,7 @@ int main(int argc, char **argv) {
 				    out.solved ? est[j].ci_high - est[j].ci_low : INFINITY;
 			}
 			if (o.verbose) {
-				printf("trial %ld sigma %g: %s rms %.3g mm, %d iterations, %.3f s; (fit - truth) / se:", t, sigma,
+				printf("trial %ld sigma %g: %s rms %.3g mm, %d iterations, %.3f s; (fit - truth) / se:", o.first + t, sigma,
 				       !out.solved ? "unsolved" : out.failed ? "FAILED" : "ok", 1e3 * out.rms, out.iterations,
 				       out.seconds);
 				for (int j = 0; out.solved && j < p; ++j)
