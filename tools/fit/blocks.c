@@ -53,7 +53,7 @@ void fit_jacobian_normal(const fit_problem *pb, const fit_jacobian_blocks *J, co
 	}
 	// The penalty rows: each is nonzero in a shot's tip offsets or one table parameter at most, so
 	// only their nonzero entries are multiplied (nonzero: room for p indices).
-	for (size_t r = 0; nonzero && r < p; ++r) {
+	for (size_t r = 0; r < p; ++r) {
 		const double *row = J->penalty + r * p;
 		size_t count = 0;
 		for (size_t j = 0; j < p; ++j)
