@@ -44,7 +44,9 @@
 //               from the nose lines) by more than POOL_TOUCH_TOLERANCE, same samples; in flight,
 //               no ball closer than R to a nose (its line outside the pocket mouths, ending at
 //               their edges), none past the
-//               table's edge (it leaves: off_table), none below the cloth
+//               table's edge (it leaves: off_table), none below the cloth; on the cloth (its
+//               motion) none past a mouth's contact line; a flight across a mouth's contact line
+//               crosses it above the nose (below, the ball falls into the pocket there)
 //   pocket      a pocket event happens inside the lines, on a rail line (HS_TOL_POCKET_LINE) and
 //               in the mouth of the pocket it names (in flight: over the mouth, at or past the
 //               contact line, inside the table's edge)
@@ -1132,13 +1134,20 @@ static inline pool_vec3 hs_nose_point(const pool_sim_def *def, int rail, pool_ve
 	return q;
 }
 
-// How far a ball centred at p (airborne motion: on the cloth or in the air) is where no ball in
-// play may be (> 0: a violation, m): below the cloth, past the table's edge (a ball clearing a
-// rail leaves the table: off_table), closer than R to a nose (its line outside the pocket
-// mouths, ending at their edges),
-// or, on the cloth over a mouth, past the contact line (it falls into the pocket there).
-static inline double hs_outside_air(const pool_sim_def *def, double dc, pool_vec3 p) {
+// How far a ball (airborne motion: on the cloth or in the air) is where no ball in play may be
+// (> 0: a violation, m): below the cloth, past the table's edge (a ball clearing a rail leaves
+// the table: off_table), closer than R to a nose (its line outside the pocket mouths, ending at
+// their edges), or, on the cloth over a mouth, past the contact line (it falls into the pocket
+// there). "On the cloth" is the ball's motion, not its height: a ball in flight that crossed
+// the line over a mouth above the nose flies on until it lands (docs/physics.md "Predicting
+// events"), and with a nose within 1e-9 m of R it crosses lower than R + POOL_TOUCH_TOLERANCE
+// (soak seed 1, nose shot 5385: launched at 1.2 cm/s from 1e-9 m inside the line, it crossed
+// 1.2e-11 m above the cloth, 1e-11 m above the nose). hs_mouth_crossing checks that a flight
+// crosses a mouth's line above the nose.
+static inline double hs_outside_air(const pool_sim_def *def, double dc, const pool_ball_state *b) {
 	const double R = def->params.ball_radius;
+	const pool_vec3 p = b->pos;
+	const int on_cloth = b->motion != POOL_MOTION_AIRBORNE && p.z <= R + POOL_TOUCH_TOLERANCE;
 	double worst = R - p.z;
 	for (int rail = 0; rail < 4; ++rail) {
 		const double in = hs_inside_edge(def, rail, p);
@@ -1146,8 +1155,34 @@ static inline double hs_outside_air(const pool_sim_def *def, double dc, pool_vec
 		const double along = rail <= POOL_RAIL_NORTH ? p.x : p.y;
 		const pool_vec3 q = hs_nose_point(def, rail, p); // (the nose's end over a mouth)
 		worst = fmax(worst, R - sqrt((p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) + (p.z - q.z) * (p.z - q.z)));
-		if (hs_pocket_at(&def->table, rail, along) != POOL_POCKET_NONE && p.z <= R + POOL_TOUCH_TOLERANCE)
+		if (hs_pocket_at(&def->table, rail, along) != POOL_POCKET_NONE && on_cloth)
 			worst = fmax(worst, dc - in);
+	}
+	return worst;
+}
+
+// A flight (segment `seg`, airborne: straight across the cloth, gravity on z alone) that began
+// inside a rail's contact line and at `dt` into it is past that line by more than the tolerance
+// crossed it at some instant; over a pocket mouth it must have crossed at or above the nose, or
+// it would have fallen into the pocket there. Returns how far below the nose it crossed (> 0: a
+// ball let through a mouth's line, m), -INFINITY when it crossed no such line.
+static inline double hs_mouth_crossing(const pool_sim_def *def, double dc, const pool_ball_state *seg, double dt) {
+	double worst = -INFINITY;
+	if (seg->motion != POOL_MOTION_AIRBORNE)
+		return worst;
+	pool_vec3 end = seg->pos;
+	end.x += seg->vel.x * dt;
+	end.y += seg->vel.y * dt;
+	for (int rail = 0; rail < 4; ++rail) {
+		const double in0 = hs_inside_edge(def, rail, seg->pos) - dc, in1 = hs_inside_edge(def, rail, end) - dc;
+		if (!(in0 >= 0.0 && in1 < -HS_TOL_LENGTH))
+			continue;
+		const double tau = dt * in0 / (in0 - in1); // the crossing: in(t) is linear in t
+		const double along = rail <= POOL_RAIL_NORTH ? seg->pos.x + seg->vel.x * tau : seg->pos.y + seg->vel.y * tau;
+		if (hs_pocket_at(&def->table, rail, along) == POOL_POCKET_NONE)
+			continue; // the nose is there: the distance to it is hs_outside_air's
+		const double z = seg->pos.z + seg->vel.z * tau - 0.5 * def->params.g * tau * tau;
+		worst = fmax(worst, def->table.cushion_height - z);
 	}
 	return worst;
 }
@@ -1186,7 +1221,7 @@ static inline void hs_check_positions(const hs_shot *s, const pool_table_shape *
 				            "t=%.17g: ball %d at (%.17g, %.17g, %.17g) is %.3g m into the nose curve, the cloth or over a hole",
 				            t, (int)b[i].id, b[i].pos.x, b[i].pos.y, b[i].pos.z, out);
 		} else if (s->def.airborne) {
-			const double out = hs_outside_air(&s->def, dc, b[i].pos);
+			const double out = hs_outside_air(&s->def, dc, &b[i]);
 			if (out > st->worst_rail)
 				st->worst_rail = out;
 			if (!(out <= (linked ? HS_TOL_LINK_LENGTH : HS_TOL_LENGTH)))
@@ -1522,6 +1557,13 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 			for (int i = 0; i < n; ++i)
 				pool_motion_evolve(p, &seg[i], ts - t0[i], &now[i]);
 			hs_check_positions(s, jaws, dc, now, ts, st, rep);
+			for (int i = 0; i < n && !jaws && s->def.airborne; ++i) {
+				const double below = hs_on_table(&now[i]) ? hs_mouth_crossing(&s->def, dc, &seg[i], ts - t0[i]) : -INFINITY;
+				if (!(below <= HS_TOL_LENGTH))
+					hs_fail_mag(rep, HS_CK_RAIL, below,
+					            "t=%.17g: ball %d crossed a contact line over a mouth in flight %.3g m below the nose, and flew on",
+					            ts, (int)now[i].id, below);
+			}
 			++samples;
 			if ((k == 0 || k == K / 2 + 1) && (e % state_at_every == 0) && state_at_checks < 2 * HS_STATE_AT_CHECKS) {
 				++state_at_checks;
