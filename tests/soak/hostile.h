@@ -27,6 +27,11 @@
 //   nose           full-size tables (7, 8, 9 ft) with noses from ~0 to ~2R high (the nose at and
 //                  just above the ball's centre, and just below its top), ordinary cloth, the
 //                  layouts above
+//   mouth          the nose class's tables with one or two balls moved onto a pocket mouth's
+//                  contact lines: a corner's two lines at once, along a corner's line inside its
+//                  mouth or at its edge, a side mouth inside or at its edges, each exactly on the
+//                  line or within +-1e-15..1e-9 m of it (or 1e-6, 1e-4 m inside), at rest or
+//                  moving at 1e-6..3 m/s any way (soak seed 1, nose shot 5385 was such a ball)
 // A third of every class's shots are airborne (options.airborne), and a third of those throw
 // balls into the air as well. Half the shots of every class but tiny_table are on real pockets
 // (pockets "jaws": the presets' facings, jaws and holes), the others on the thesis model's lines. Tables with a nose at or below the ball's centre, or above 1.9 R,
@@ -142,10 +147,11 @@ typedef enum hs_class {
 	HS_TINY_TABLE,
 	HS_EXTREME_PARAMS,
 	HS_NOSE,
+	HS_MOUTH,
 	HS_CLASS_COUNT
 } hs_class;
 static const char *const hs_class_names[HS_CLASS_COUNT] = {
-	"layout", "rail_struck", "rail_drift", "pair", "cluster", "masse", "tiny_table", "extreme_params", "nose"};
+	"layout", "rail_struck", "rail_drift", "pair", "cluster", "masse", "tiny_table", "extreme_params", "nose", "mouth"};
 
 typedef enum hs_check_kind {
 	HS_CK_API,
@@ -835,6 +841,49 @@ static inline void hs_gen_nose(hs_shot *s, hs_rng *r) {
 	}
 }
 
+// The mouth class: the nose class's shot, then one or two balls (the cue ball among them, at
+// rest) moved onto the contact lines of a pocket mouth, on them or within rounding of them,
+// where they fit.
+static inline void hs_gen_mouth(hs_shot *s, hs_rng *r) {
+	hs_gen_nose(s, r);
+	static const double off[] = {0.0, 0.0, 0.0, -1e-9, -5e-10, -1e-12, -1e-15, 1e-15, 1e-12, 5e-10, 1e-9, -1e-6, -1e-4};
+	const int n_off = (int)(sizeof off / sizeof off[0]);
+	const double R = s->def.params.ball_radius, L = s->def.table.length, W = s->def.table.width;
+	const double dc = hs_dc(&s->def), c = s->def.table.corner_mouth / sqrt(2.0), sm = s->def.table.side_mouth;
+	const int moves = 1 + hs_int(r, 2);
+	for (int m = 0; m < moves && s->n > 0; ++m) {
+		const int i = hs_int(r, s->n);
+		const int east = hs_int(r, 2), north = hs_int(r, 2), kind = hs_int(r, 4);
+		const double a = off[hs_int(r, n_off)], b = off[hs_int(r, n_off)]; // > 0: past the line
+		// along: from the corner, inside the mouth (dc..c + R) or at its edge c (within rounding)
+		const double along = hs_chance(r, 0.5) ? hs_range(r, dc, c + R) : c + off[hs_int(r, n_off)];
+		double x = east ? L - dc + a : dc - a, y = north ? W - dc + b : dc - b;
+		if (kind == 1) // along the east or west line
+			y = north ? W - along : along;
+		else if (kind == 2) // along the north or south line
+			x = east ? L - along : along;
+		else if (kind == 3) // a side mouth: inside, or at an edge within rounding
+			x = 0.5 * L + (hs_chance(r, 0.5) ? hs_range(r, -0.5 * sm - R, 0.5 * sm + R)
+			                                 : (east ? 1.0 : -1.0) * (0.5 * sm + off[hs_int(r, n_off)]));
+		const pool_ball_state keep = s->balls[i];
+		s->balls[i].pos = hs_xy(-1e9, -1e9, -1e9); // out of the way while it is tested
+		const pool_vec3 p = hs_xy(x, y, R);
+		if (!hs_fits(s, p)) {
+			s->balls[i] = keep;
+			continue;
+		}
+		memset(&s->balls[i].vel, 0, sizeof s->balls[i].vel);
+		memset(&s->balls[i].omega, 0, sizeof s->balls[i].omega);
+		s->balls[i].pos = p;
+		if (i == s->cue || hs_chance(r, 0.25))
+			continue; // at rest (the struck ball must be)
+		const double speed = exp(hs_range(r, log(1e-6), log(3.0))), dir = hs_range(r, 0.0, 2.0 * HS_PI);
+		s->balls[i].vel = hs_xy(speed * cos(dir), speed * sin(dir), 0.0);
+		if (hs_chance(r, 0.5))
+			s->balls[i].omega = hs_xy(hs_range(r, -80.0, 80.0), hs_range(r, -80.0, 80.0), hs_range(r, -20.0, 20.0));
+	}
+}
+
 // Balls thrown into the air (airborne shots): up to two balls other than the cue ball lifted up
 // to 0.25 m and thrown at up to 2 m/s (mostly upwards), with spin, where they fit.
 static inline void hs_throw_balls(hs_shot *s, hs_rng *r) {
@@ -901,6 +950,7 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	case HS_MASSE: hs_gen_masse(s, &r); break;
 	case HS_TINY_TABLE: hs_gen_tiny_table(s, &r); break;
 	case HS_EXTREME_PARAMS: hs_gen_extreme_params(s, &r); break;
+	case HS_MOUTH: hs_gen_mouth(s, &r); break;
 	default: hs_gen_nose(s, &r); break;
 	}
 	// Again after the generators (the nose class takes a preset's table). The cut angles as
