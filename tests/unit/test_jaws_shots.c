@@ -216,19 +216,13 @@ static void test_families(void **state) {
 		}
 }
 
-// A ball linked (LINK) against a facing slides into the hole during a step: the hole's edge
-// must be its event even though the part it touches is "contacted" at once (a part contact is
-// the step's LCP's, no event; taken as the earliest prediction it hid the hole, and the ball
-// slid 0.34 mm over the hole before the next step dropped it). The soak's shot (seed 1, index
-// 16635, class nose): a 7 ft table with a high nose (1.85 R) and the thesis models.
-static void test_linked_into_hole(void **state) {
-	(void)state;
-	pool_sim_def def = thesis_sim_def();
+// A soak shot's jaws table as its scenario prints it: the WPA pockets (mouths, cut angles,
+// jaws, shelves and holes) on a table of this size and nose height.
+static void soak_jaws_table(pool_table_def *t, double length, double width, double nose) {
 	const double deg = 3.14159265358979323846 / 180.0;
-	pool_table_def *t = &def.table;
-	t->length = 1.9811999999999999;
-	t->width = 0.99059999999999993;
-	t->cushion_height = 0.053004041623678999;
+	t->length = length;
+	t->width = width;
+	t->cushion_height = nose;
 	t->corner_mouth = 0.1143;
 	t->side_mouth = 0.127;
 	t->pockets = POOL_POCKETS_JAWS;
@@ -240,6 +234,18 @@ static void test_linked_into_hole(void **state) {
 	t->side_shelf = 0.0047624999999999994;
 	t->corner_hole_radius = 0.069849999999999995;
 	t->side_hole_radius = 0.07619999999999999;
+}
+
+// A ball linked (LINK) against a facing slides into the hole during a step: the hole's edge
+// must be its event even though the part it touches is "contacted" at once (a part contact is
+// the step's LCP's, no event; taken as the earliest prediction it hid the hole, and the ball
+// slid 0.34 mm over the hole before the next step dropped it). The soak's shot (seed 1, index
+// 16635, class nose): a 7 ft table with a high nose (1.85 R) and the thesis models.
+static void test_linked_into_hole(void **state) {
+	(void)state;
+	pool_sim_def def = thesis_sim_def();
+	const double deg = 3.14159265358979323846 / 180.0;
+	soak_jaws_table(&def.table, 1.9811999999999999, 0.99059999999999993, 0.053004041623678999);
 	def.airborne = false;
 	pool_table_shape sh;
 	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
@@ -293,21 +299,7 @@ static void test_long_flight_onto_a_jaw(void **state) {
 	(void)state;
 	pool_sim_def def = pool_default_sim_def();
 	const double deg = 3.14159265358979323846 / 180.0;
-	pool_table_def *t = &def.table;
-	t->length = 2.3367999999999998;
-	t->width = 1.1683999999999999;
-	t->cushion_height = 0.028575000195715631;
-	t->corner_mouth = 0.1143;
-	t->side_mouth = 0.127;
-	t->pockets = POOL_POCKETS_JAWS;
-	t->corner_cut_angle = 142 * deg;
-	t->side_cut_angle = 104 * deg;
-	t->corner_jaw_radius = 0.02095;
-	t->side_jaw_radius = 0.0079500000000000005;
-	t->corner_shelf = 0.028575;
-	t->side_shelf = 0.0047624999999999994;
-	t->corner_hole_radius = 0.069849999999999995;
-	t->side_hole_radius = 0.07619999999999999;
+	soak_jaws_table(&def.table, 2.3367999999999998, 1.1683999999999999, 0.028575000195715631);
 	def.airborne = true;
 	def.max_time = 60;
 	def.max_events = 20000;
