@@ -213,7 +213,17 @@ double pool_predict_hole_jaws(const pool_table_shape *sh, const pool_ball_state 
 		const double reach = (hypot(q.v.x, q.v.y) + hypot(q.a.x, q.a.y) * T) * T * (1.0 + 1e-12);
 		if (hypot(q.p.x - ps->hx, q.p.y - ps->hy) - ps->hole_radius > reach + POOL_TOUCH_TOLERANCE)
 			continue;
-		const double t = enter_circle(&q, ps->hx, ps->hy, ps->hole_radius, fmin(T, best));
+		double t = enter_circle(&q, ps->hx, ps->hy, ps->hole_radius, fmin(T, best));
+		// Into it below the nose only, as in flight: a ball above the nose over a hole (riding
+		// a facing's or jaw's nose line from above) is not in the pocket (soak seed 21, mouth
+		// shot 184749 and extreme_params shot 12377: a ball landing on a facing from above,
+		// linked at once, dropped into the hole 2R above the cloth). A linked ball moves
+		// uniformly: if it comes down below the nose while over the hole, it falls in then.
+		if (t < best && !(q.p.z + (q.v.z + q.a.z * t) * t < sh->table.cushion_height)) {
+			const double below = q.a.z == 0.0 && q.v.z < 0.0 ? (q.p.z - sh->table.cushion_height) / -q.v.z : INFINITY;
+			const pool_vec3 at = path_at(&q, below);
+			t = below <= fmin(T, best) && hypot(at.x - ps->hx, at.y - ps->hy) <= ps->hole_radius ? below : INFINITY;
+		}
 		if (t < best) {
 			best = t;
 			*pocket = (pool_pocket)p;

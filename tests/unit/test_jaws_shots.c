@@ -334,8 +334,64 @@ static void test_long_flight_onto_a_jaw(void **state) {
 	pool_sim_destroy(sim);
 }
 
+// A ball struck almost straight down with full side (soak seed 21, mouth shot 184749: 7 ft, the
+// nose 8e-11 m above the ball's centre) hops along the north-east facing's nose line from above,
+// 2R above the cloth, with its centre over the pocket's hole; LINK takes it at the facing's
+// repeated contacts. Over a hole above the nose a ball is not in the pocket (in flight it flies
+// on): it was pocketed at once, 2R above the cloth. Every pocket event is below the nose, and at
+// the events and on samples no ball is inside the nose curve.
+static void test_linked_above_a_hole(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	const double deg = 3.14159265358979323846 / 180.0;
+	soak_jaws_table(&def.table, 1.9811999999999999, 0.99059999999999993, 0.028575000079588804);
+	def.airborne = true;
+	def.max_time = 60;
+	def.max_events = 20000;
+	pool_table_shape sh;
+	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
+	pool_sim *sim = make_sim(&def);
+	const double R = def.params.ball_radius;
+	pool_ball_state b;
+	memset(&b, 0, sizeof b);
+	b.pos = pool_v3(0.070980322776401386, 0.96202499999999991, R);
+	b.vel = pool_v3(-0.00056588838332504582, -0.00075526811793557344, 0);
+	b.omega = pool_v3(-51.419342007938425, -27.601371442546977, 13.706935021251141);
+	add_ball(sim, &b);
+	memset(&b, 0, sizeof b);
+	b.id = 1;
+	b.pos = pool_v3(1.9168974015108371, 0.96202399999999988, R);
+	add_ball(sim, &b);
+	const pool_strike strike = {2.6164080278772657, 0.0, 85.218218050182514 * deg, -0.028574999999971425, 3.4994282285600623e-18};
+	assert_int_equal(pool_sim_strike(sim, 1, &strike, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	stats st;
+	memset(&st, 0, sizeof st);
+	st.worst_inside = st.worst_overlap = -INFINITY;
+	int ne, linked = 0;
+	double highest_pocket = -INFINITY;
+	const pool_event *ev = pool_sim_events(sim, &ne);
+	for (int e = 0; e < ne; ++e) {
+		linked += ev[e].type == POOL_EVENT_LINK_BEGIN;
+		if (ev[e].type == POOL_EVENT_POCKET) {
+			// (the pocketed ball's state keeps where it left play)
+			highest_pocket = fmax(highest_pocket, pool_sim_event_states(sim, &ev[e])->pos.z);
+		}
+		sample(sim, &sh, &def, ev[e].time, &st);
+	}
+	const double end = pool_sim_end_time(sim);
+	for (int i = 0; i <= 20 * SAMPLES; ++i)
+		sample(sim, &sh, &def, end * i / (20 * SAMPLES), &st);
+	printf("linked above a hole: %d events, %d link_begin, highest pocket event %.6g m above the nose, worst inside %.3g m\n",
+	       ne, linked, highest_pocket - def.table.cushion_height, st.worst_inside);
+	assert_true(linked > 0); // the shot still reaches LINK on the facing
+	assert_true(highest_pocket <= def.table.cushion_height);
+	assert_true(st.worst_inside <= POSITION_TOLERANCE);
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {cmocka_unit_test(test_families), cmocka_unit_test(test_linked_into_hole),
-	                                   cmocka_unit_test(test_long_flight_onto_a_jaw)};
+	                                   cmocka_unit_test(test_long_flight_onto_a_jaw), cmocka_unit_test(test_linked_above_a_hole)};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
