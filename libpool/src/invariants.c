@@ -50,8 +50,8 @@ static void check_bodies(const pool_sim *sim) {
 		CHECK_BODY(memcmp(&sim->cur[i], &b->seg.start, sizeof sim->cur[i]) == 0);
 		CHECK_BODY(b->active == (sim->cur[i].motion != POOL_MOTION_POCKETED && sim->cur[i].motion != POOL_MOTION_OFF_TABLE));
 		// What the pair loop reads first mirrors the body (schedule.c).
-		CHECK_BODY(sim->reach[i].flags ==
-		           ((b->active ? POOL_REACH_IN_PLAY : 0) | (b->seg.model->translating ? POOL_REACH_MOVING : 0)));
+		CHECK_BODY(((sim->in_play[i >> 6] & pool_body_bit(i)) != 0) == (b->active != 0));
+		CHECK_BODY(((sim->moving[i >> 6] & pool_body_bit(i)) != 0) == (b->seg.model->translating != 0));
 		CHECK_BODY(b->partner >= -1 && b->partner < sim->n && b->partner != i);
 		CHECK_BODY(b->partner < 0 || (b->active && sim->body[b->partner].active));
 		CHECK_BODY(!(b->seg.t0 > sim->time) || sim->time == 0.0);

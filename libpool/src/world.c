@@ -199,7 +199,7 @@ void pool_sim_destroy(pool_sim *sim) {
 	if (!sim)
 		return;
 	const pool_allocator a = sim->alloc;
-	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work, sim->reach};
+	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work, sim->reach, sim->in_play, sim->moving};
 	pool_link_free(&sim->link);
 	pool_history_free(&sim->history, &a);
 	pool_broadphase_free(&sim->broad, &a);
@@ -224,11 +224,14 @@ pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *e
 static pool_result reserve_balls(pool_sim *sim, int need) {
 	if (need > sim->cap_balls) {
 		const int cap = pool_mem_next_cap(sim->cap_balls, need);
-		void **arrays[] = {(void **)&sim->cur,  (void **)&sim->body, (void **)&sim->keys, (void **)&sim->heap,
-		                   (void **)&sim->hpos, (void **)&sim->work, (void **)&sim->reach};
+		// The bit sets get a word per ball, more than they need, so that one call grows every array.
+		void **arrays[] = {(void **)&sim->cur,  (void **)&sim->body, (void **)&sim->keys,  (void **)&sim->heap,
+		                   (void **)&sim->hpos, (void **)&sim->work, (void **)&sim->reach, (void **)&sim->in_play,
+		                   (void **)&sim->moving};
 		const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body), sizeof(pool_event_key), sizeof(int),
-		                        sizeof(int),             sizeof(int),       sizeof(pool_reach)};
-		if (pool_mem_grow(&sim->alloc, arrays, elems, 7, sim->n, cap))
+		                        sizeof(int),             sizeof(int),       sizeof(pool_reach),     sizeof(uint64_t),
+		                        sizeof(uint64_t)};
+		if (pool_mem_grow(&sim->alloc, arrays, elems, 9, sim->n, cap))
 			return POOL_ERR_OUT_OF_MEMORY;
 		sim->cap_balls = cap;
 	}
