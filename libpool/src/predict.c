@@ -118,6 +118,10 @@ static double line_contact(double x0, double v, double a, double line, double si
 	g.f[0] = g.gap;
 	g.f[1] = -g.speed;
 	g.f[2] = -0.5 * g.accel;
+	// Apart and staying apart (the least of the gap over the window well above zero): most rails
+	// a ball does not reach before its segment ends, without the root finder either.
+	if (g.gap > POOL_TOUCH_TOLERANCE && pool_contact_quadratic_apart(g.f[0], g.f[1], g.f[2], T))
+		return INFINITY;
 	g.f[3] = g.f[4] = 0.0;
 	return pool_contact_next(&g, T);
 }

@@ -183,12 +183,15 @@ static inline int reach_apart(const double *a, const double *b) {
 
 void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
 	begin_own(sim, i, s, t);
+	// Before the shot's first prediction (balls being added, the strike) no search reads the reach,
+	// and the first prediction files every body's (pool_schedule_predict_all).
+	if (!sim->predicted)
+		return;
 	reach_box(sim, i);
 	// The broadphase files the segment's reach up to its own next event: no pair search looks
 	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
-	// Before the shot's first prediction (balls being added) there is nothing to file it in yet.
 	const pool_body *b = &sim->body[i];
-	if (sim->broad.on && sim->predicted)
+	if (sim->broad.on)
 		pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, t, fmin(b->own_time, sim->def.max_time));
 }
 
