@@ -326,10 +326,10 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	s.motion = POOL_MOTION_STATIONARY;
 	pool_motion_after_impulse(&sim->def, &s);
 	sim->n++;
+	// The segment and its own event are begin_own's (pool_schedule_begin_segment), whole.
 	pool_body *b = &sim->body[idx];
-	memset(b, 0, sizeof *b);
-	b->active = 1;
 	b->partner = -1;
+	b->changed = 0;
 	pool_link_add_ball(&sim->link, idx);
 	pool_schedule_begin_segment(sim, idx, &s, sim->time);
 	pool_history_place(&sim->history, idx, &s, sim->time);
