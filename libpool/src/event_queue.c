@@ -1,19 +1,7 @@
 // Indexed binary min-heap of predicted events with a total, deterministic order.
 #include "event_queue.h"
 
-#include <math.h>
-
 #include "assert.h"
-
-// 1 when key a goes above key b in the heap: the keys' order, except that slots with no event
-// (time INFINITY, most of the balls at rest) are left in any order among themselves. Their
-// order never matters: one of them on top means that nothing will happen again, whichever it
-// is (the world stops at rest), and the full comparison of such ties cost a fifth of the sifts.
-static inline int before(const pool_event_key *a, const pool_event_key *b) {
-	if (a->time != b->time)
-		return a->time < b->time;
-	return a->time != INFINITY && pool_event_key_cmp(a, b) < 0;
-}
 
 // Both sifts carry the moving slot along and shift the others into the hole it leaves, one
 // write per level instead of a swap; keys are distinct (their slots differ), so the top is the
@@ -23,7 +11,7 @@ static void sift_up(pool_event_queue *q, int i) {
 	const pool_event_key *key = &q->keys[slot];
 	while (i > 0) {
 		const int parent = (i - 1) / 2, above = q->heap[parent];
-		if (!before(key, &q->keys[above]))
+		if (!pool_event_queue_before(key, &q->keys[above]))
 			break;
 		q->heap[i] = above;
 		q->pos[above] = i;
@@ -41,10 +29,10 @@ static void sift_down(pool_event_queue *q, int i) {
 		if (l >= q->count)
 			break;
 		int child = l;
-		if (r < q->count && before(&q->keys[q->heap[r]], &q->keys[q->heap[l]]))
+		if (r < q->count && pool_event_queue_before(&q->keys[q->heap[r]], &q->keys[q->heap[l]]))
 			child = r;
 		const int below = q->heap[child];
-		if (!before(&q->keys[below], key))
+		if (!pool_event_queue_before(&q->keys[below], key))
 			break;
 		q->heap[i] = below;
 		q->pos[below] = i;
@@ -66,7 +54,7 @@ void pool_event_queue_build(pool_event_queue *q, int count) {
 
 void pool_event_queue_update(pool_event_queue *q, int slot, const pool_event_key *key) {
 	POOL_ASSERT(slot >= 0 && slot < q->count && key->slot == slot);
-	const int earlier = before(key, &q->keys[slot]);
+	const int earlier = pool_event_queue_before(key, &q->keys[slot]);
 	q->keys[slot] = *key;
 	if (earlier)
 		sift_up(q, q->pos[slot]);
