@@ -121,15 +121,16 @@ double pool_predict_ball_ball_in_reach(pool_vec3 dp, pool_vec3 dv, pool_vec3 da,
 	return ball_ball(dp, dv, da, R, T, 1);
 }
 
-// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `line` coming from the side where
-// side (line - x) > 0 (side +1: increasing towards it); INFINITY when never.
-static double line_contact(double x0, double v, double a, double line, double side, double T) {
+// How far a coordinate x0 + v tau + a tau^2 / 2 moves over [0, T] at most, (|v| + |a| T / 2) T,
+// with a margin for that bound's rounding: a contact line farther away is out of reach.
+static inline double line_reach(double v, double a, double T) { return (fabs(v) + 0.5 * fabs(a) * T) * T * (1.0 + 1e-12); }
+
+// Earliest tau in [0, T] at which a gap side (line - x), now `gap` and not out of reach
+// (line_reach), closes along x0 + v tau + a/2 tau^2 (side +1: x increasing towards the line);
+// INFINITY when never.
+static double gap_contact(double gap, double v, double a, double side, double T) {
 	pool_contact_gap g;
-	g.gap = side * (line - x0);
-	// Apart and out of reach over the window (the gap falls by at most (|v| + |a| T / 2) T; the
-	// margin covers that bound's rounding): no contact, without the root finder.
-	if (g.gap > POOL_TOUCH_TOLERANCE && (fabs(v) + 0.5 * fabs(a) * T) * T * (1.0 + 1e-12) < g.gap)
-		return INFINITY;
+	g.gap = gap;
 	g.speed = side * v;
 	g.accel = side * a;
 	g.f[0] = g.gap;
@@ -143,17 +144,33 @@ static double line_contact(double x0, double v, double a, double line, double si
 	return pool_contact_next(&g, T);
 }
 
-double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
-                            pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket) {
-	const double dc = pool_table_contact_distance(table, R);
+// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `line` coming from the side where
+// side (line - x) > 0 (side +1: increasing towards it); INFINITY when never.
+static double line_contact(double x0, double v, double a, double line, double side, double T) {
+	const double gap = side * (line - x0);
+	// Apart and out of reach over the window: no contact, without the root finder.
+	if (gap > POOL_TOUCH_TOLERANCE && line_reach(v, a, T) < gap)
+		return INFINITY;
+	return gap_contact(gap, v, a, side, T);
+}
+
+// pool_predict_cushion with the contact distance dc of the table and ball radius.
+static double cushion_lines(const pool_table_def *table, double dc, const pool_ball_state *s, pool_vec3 acc, double T,
+                            pool_rail *rail, pool_pocket *pocket) {
 	double best = INFINITY;
 	pool_rail best_rail = POOL_RAIL_NONE;
+	// The reach of each axis, the same for its two rails.
+	const double reach_x = line_reach(s->vel.x, acc.x, T), reach_y = line_reach(s->vel.y, acc.y, T);
 	for (int r = 0; r < 4; ++r) {
 		const pool_rail rr = (pool_rail)r;
 		const double line = pool_rail_contact_line(table, dc, rr), side = pool_rail_side(rr);
 		// South / north rails: the motion normal to them is in y.
-		const double t = pool_rail_along_x(rr) ? line_contact(s->pos.y, s->vel.y, acc.y, line, side, T)
-		                                       : line_contact(s->pos.x, s->vel.x, acc.x, line, side, T);
+		const int along_x = pool_rail_along_x(rr);
+		const double x0 = along_x ? s->pos.y : s->pos.x, gap = side * (line - x0);
+		// Apart and out of reach over the window: no contact, without the root finder.
+		if (gap > POOL_TOUCH_TOLERANCE && (along_x ? reach_y : reach_x) < gap)
+			continue;
+		const double t = along_x ? gap_contact(gap, s->vel.y, acc.y, side, T) : gap_contact(gap, s->vel.x, acc.x, side, T);
 		if (t < best) {
 			best = t;
 			best_rail = rr;
@@ -167,6 +184,16 @@ double pool_predict_cushion(const pool_table_def *table, double R, const pool_ba
 		*pocket = pool_pocket_at(table, best_rail, along);
 	}
 	return best;
+}
+
+double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
+                            pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket) {
+	return cushion_lines(table, pool_table_contact_distance(table, R), s, acc, T, rail, pocket);
+}
+
+double pool_predict_cushion_lines(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
+                                  pool_rail *rail, pool_pocket *pocket) {
+	return cushion_lines(&shape->table, shape->dc, s, acc, T, rail, pocket);
 }
 
 // The first instant in (after, window] at which a flying ball's distance to a nose line
