@@ -453,7 +453,9 @@ static pool_result process(pool_sim *sim, int slot) {
 	// hit" must not be a ball that was never touched) and the pair is predicted again from here,
 	// where the contact rule sees it parting. A run of such no-ops at one instant (never seen)
 	// would be recorded after NOOP_LIMIT, so the shot still makes progress to max_events.
-	const int unchanged = flags == 0 && no_impulse(sim, inv, s, before, count);
+	// Only a contact's graze or pressed pair reads it (a state change, a pocket, a landing never).
+	const int contact = type == POOL_EVENT_BALL_BALL || type == POOL_EVENT_BALL_CUSHION;
+	const int unchanged = contact && flags == 0 && no_impulse(sim, inv, s, before, count);
 	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
 	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
 	// persistent contact by definition: LINK takes it at once (no event of its own is recorded).
