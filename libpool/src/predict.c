@@ -191,9 +191,15 @@ double pool_predict_cushion(const pool_table_def *table, double R, const pool_ba
 	return cushion_lines(table, pool_table_contact_distance(table, R), s, acc, T, rail, pocket);
 }
 
-double pool_predict_cushion_lines(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
-                                  pool_rail *rail, pool_pocket *pocket) {
-	return cushion_lines(&shape->table, shape->dc, s, acc, T, rail, pocket);
+double pool_predict_cushion_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
+                                  pool_event_type *kind, pool_site *site) {
+	if (sh->table.pockets != POOL_POCKETS_MOUTH_LINES)
+		return pool_predict_cushion_jaws(sh, s, acc, T, kind, site);
+	// The thesis model's lines, with the shape's contact distance (computed once).
+	site->part = -1;
+	const double t = cushion_lines(&sh->table, sh->dc, s, acc, T, &site->rail, &site->pocket);
+	*kind = site->pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
+	return t;
 }
 
 // The first instant in (after, window] at which a flying ball's distance to a nose line

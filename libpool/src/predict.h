@@ -41,10 +41,6 @@ static inline int pool_predict_pair_out_of_reach(pool_vec3 dp, pool_vec3 dv, poo
 double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
                             pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket);
 
-/// pool_predict_cushion on a table shape (its table, and its contact distance computed once).
-double pool_predict_cushion_lines(const pool_table_shape *shape, const pool_ball_state *s, pool_vec3 acc, double T,
-                                  pool_rail *rail, pool_pocket *pocket);
-
 /// Earliest tau in [0, T] of an airborne ball's own next event (state s, acceleration acc):
 /// landing (ball_table), a cushion nose met in flight (ball_cushion: distance to the nose line
 /// in the rail's normal plane equal to R, a quartic), a pocket (crossing a contact line inside a

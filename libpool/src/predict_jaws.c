@@ -446,16 +446,6 @@ double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_stat
 	return best;
 }
 
-double pool_predict_cushion_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
-                                  pool_event_type *kind, pool_site *site) {
-	if (sh->table.pockets != POOL_POCKETS_MOUTH_LINES)
-		return pool_predict_cushion_jaws(sh, s, acc, T, kind, site);
-	site->part = -1;
-	const double t = pool_predict_cushion_lines(sh, s, acc, T, &site->rail, &site->pocket);
-	*kind = site->pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
-	return t;
-}
-
 double pool_predict_flight_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
                                  pool_event_type *kind, pool_site *site) {
 	if (sh->table.pockets != POOL_POCKETS_MOUTH_LINES)

@@ -114,18 +114,6 @@ void pool_segment_begin(pool_segment *seg, const pool_params *p, const pool_ball
 	seg->spin_end = m->on_cloth && s->omega.z != 0.0 ? stop_time(fabs(s->omega.z), spin_rate(p)) : INFINITY;
 }
 
-double pool_segment_next_change(const pool_segment *seg, pool_event_type *kind) {
-	double best = seg->move_end;
-	pool_event_type k = seg->move_kind;
-	if (seg->spin_end < best) {
-		best = seg->spin_end;
-		k = POOL_EVENT_SPIN_STOP;
-	}
-	if (kind)
-		*kind = k;
-	return best;
-}
-
 // fmin(tau, end) for tau > 0 (never NaN), as fmin gives it, a NaN end included, without its call:
 // every event evaluates states.
 static inline double until(double tau, double end) { return end < tau ? end : tau; }
