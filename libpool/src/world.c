@@ -435,10 +435,13 @@ static pool_result process(pool_sim *sim, int slot) {
 	const pool_result cut = pool_link_cut(&sim->link, inv, count, now);
 	if (cut || pool_link_starved(&sim->link))
 		return cut;
+	// A contact's states before its handler: the no-impulse test reads them (below).
+	const int contact = type == POOL_EVENT_BALL_BALL || type == POOL_EVENT_BALL_CUSHION;
 	pool_ball_state s[2], before[2];
 	for (int k = 0; k < count; ++k) {
 		pool_world_state_now(sim, inv[k], now, &s[k]);
-		before[k] = s[k];
+		if (contact)
+			before[k] = s[k];
 	}
 	const pool_event_handler handle = pool_event_handler_for(type);
 	// Impulses act on touching balls only: a pair whose predicted meeting rounded to an instant
@@ -454,7 +457,6 @@ static pool_result process(pool_sim *sim, int slot) {
 	// where the contact rule sees it parting. A run of such no-ops at one instant (never seen)
 	// would be recorded after NOOP_LIMIT, so the shot still makes progress to max_events.
 	// Only a contact's graze or pressed pair reads it (a state change, a pocket, a landing never).
-	const int contact = type == POOL_EVENT_BALL_BALL || type == POOL_EVENT_BALL_CUSHION;
 	const int unchanged = contact && flags == 0 && no_impulse(sim, inv, s, before, count);
 	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
 	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
