@@ -106,6 +106,8 @@ static double cloth_part(const pool_table_shape *sh, int k, const path *q, doubl
 		if (s0 - sh->dc > POOL_TOUCH_TOLERANCE && (fabs(s1) + fabs(s2) * T) * T * (1.0 + 1e-12) < s0 - sh->dc)
 			return INFINITY;
 		const pool_contact_gap g = line_gap(s0, s1, s2, sh->dc);
+		if (g.gap > POOL_TOUCH_TOLERANCE && pool_contact_quadratic_apart(g.f[0], g.f[1], g.f[2], T))
+			return INFINITY; // clear of the line over the window
 		return part_contact(np, &g, q, T);
 	}
 	const pool_contact_gap g = sphere_gap(&w, np->length + sh->dc);
@@ -157,6 +159,10 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 		const pool_contact_gap g = line_gap(side * (line - q0), -side * vq, -0.5 * side * aq, 0.0);
 		const double window = fmin(T, best);
 		if (g.gap > POOL_TOUCH_TOLERANCE && (fabs(g.f[1]) + fabs(g.f[2]) * window) * window * (1.0 + 1e-12) < g.gap)
+			continue;
+		// Nor a line the ball stays well clear of over the window (its least gap there): no
+		// crossing, in a mouth or not.
+		if (g.gap > POOL_TOUCH_TOLERANCE && pool_contact_quadratic_apart(g.f[0], g.f[1], g.f[2], window))
 			continue;
 		pool_pocket pocket = POOL_POCKET_NONE;
 		// Beyond the line: in a pocket's mouth (or, within a nose's span, inside its cushion).
