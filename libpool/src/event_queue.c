@@ -54,8 +54,12 @@ void pool_event_queue_build(pool_event_queue *q, int count) {
 
 void pool_event_queue_update(pool_event_queue *q, int slot, const pool_event_key *key) {
 	POOL_ASSERT(slot >= 0 && slot < q->count && key->slot == slot);
+	// No event before and none now (a ball at rest predicted again): its place in the heap holds.
+	const int none = key->time == INFINITY && q->keys[slot].time == INFINITY;
 	const int earlier = pool_event_queue_before(key, &q->keys[slot]);
 	q->keys[slot] = *key;
+	if (none)
+		return;
 	if (earlier)
 		sift_up(q, q->pos[slot]);
 	else
