@@ -432,7 +432,10 @@ static pool_result process(pool_sim *sim, int slot) {
 	}
 	// A ball LINK holds: its cluster's step ends here, at the length it lasted, and the event
 	// acts on the states the step left (a cluster's balls are the solver's, not the world's).
-	const pool_result cut = pool_link_cut(&sim->link, inv, count, now);
+	int held = 0; // one of the balls is LINK's (most events: none)
+	for (int k = 0; k < count; ++k)
+		held |= pool_link_cluster_of(&sim->link, inv[k]) >= 0;
+	const pool_result cut = held ? pool_link_cut(&sim->link, inv, count, now) : POOL_OK;
 	if (cut || pool_link_starved(&sim->link))
 		return cut;
 	// A contact's states before its handler: the no-impulse test reads them (below).
@@ -449,7 +452,8 @@ static pool_result process(pool_sim *sim, int slot) {
 	const int apart = type == POOL_EVENT_BALL_BALL &&
 	                  pool_v3_len(pool_v3_sub(s[0].pos, s[1].pos)) - 2.0 * sim->def.params.ball_radius > POOL_TOUCH_TOLERANCE;
 	const int flags = handle && !apart ? handle(&ctx, type, s, count) : 0;
-	pool_link_keep_linked(&sim->link, inv, s, count); // (a handler derives a motion state from velocities)
+	if (held)
+		pool_link_keep_linked(&sim->link, inv, s, count); // (a handler derives a motion state from velocities)
 	// A graze: the prediction found the pair touching while approaching by a rounding-level
 	// speed, and at the event they are already parting, so Petit's law gave no impulse and the
 	// states are unchanged. That is no collision: nothing is recorded (a player's "first ball
