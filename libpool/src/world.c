@@ -494,7 +494,8 @@ static pool_result process(pool_sim *sim, int slot) {
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
-	return pool_link_after_event(&sim->link, type, ctx.rail, inv, s, count, now);
+	// LINK looks at contacts (its trigger, a ball joining a cluster) and at the balls it holds.
+	return contact || held ? pool_link_after_event(&sim->link, type, ctx.rail, inv, s, count, now) : POOL_OK;
 }
 
 // Says in sim->last_error what made the step at `now` fail with r.
