@@ -272,11 +272,28 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
 		                      "balls[%d].omega: spin surface speed |omega| R above the %g m/s limit (POOL_MAX_SPEED)", idx,
 		                      POOL_MAX_SPEED);
-	int dup = find_ball(sim, ball->id);
-	if (dup >= 0)
+	// One pass over the balls placed: a duplicate id, reported now, and the first ball this one
+	// overlaps, reported after the table's checks. Most balls are at least 2R apart, which their
+	// squared distance tells without a square root (sqrt is monotone, and 2R is far above
+	// 2R - tol): the same answer for every pair.
+	const double tol = POOL_TOUCH_TOLERANCE, apart2 = 4.0 * R * R;
+	int dup = 0, overlap = -1;
+	double overlap_d = 0.0;
+	for (int j = 0; j < sim->n; ++j) {
+		dup |= sim->cur[j].id == ball->id;
+		const pool_vec3 dp = pool_v3_sub(ball->pos, sim->cur[j].pos);
+		const double dd = pool_v3_dot(dp, dp);
+		if (dd >= apart2 || overlap >= 0)
+			continue;
+		const double d = sqrt(dd);
+		if (d < 2.0 * R - tol) {
+			overlap = j;
+			overlap_d = d;
+		}
+	}
+	if (dup)
 		return pool_error_set(error, POOL_ERR_DUPLICATE_ID, "balls[%d].id: duplicate id %d", idx, (int)ball->id);
 	const double L = sim->def.table.length, W = sim->def.table.width;
-	const double tol = POOL_TOUCH_TOLERANCE;
 	if (pool_world_planar(sim)) {
 		if (fabs(ball->pos.z - R) > tol)
 			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
@@ -305,19 +322,9 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
 			                      pool_rail_name(nose_rail), -nose_gap);
 	}
-	// Most balls are at least 2R apart, which their squared distance tells without a square root
-	// (sqrt is monotone, and 2R is far above 2R - tol): the same answer for every pair.
-	const double apart2 = 4.0 * R * R;
-	for (int j = 0; j < sim->n; ++j) {
-		const pool_vec3 dp = pool_v3_sub(ball->pos, sim->cur[j].pos);
-		const double dd = pool_v3_dot(dp, dp);
-		if (dd >= apart2)
-			continue;
-		const double d = sqrt(dd);
-		if (d < 2.0 * R - tol)
-			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
-			                      (int)sim->cur[j].id, 2.0 * R - d);
-	}
+	if (overlap >= 0)
+		return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
+		                      (int)sim->cur[overlap].id, 2.0 * R - overlap_d);
 	if (reserve_balls(sim, idx + 1) || pool_history_reserve(&sim->history, &sim->alloc, 0, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "balls[%d]: out of memory", idx);
 	pool_ball_state s = *ball;
