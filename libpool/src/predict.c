@@ -154,28 +154,37 @@ static double line_contact(double x0, double v, double a, double line, double si
 	return gap_contact(gap, v, a, side, T);
 }
 
+// One rail of cushion_lines: its contact line and side, the centre's coordinate q0, speed v and
+// acceleration a across it, that axis' reach; *best and *best_rail become its contact if earlier.
+static inline void rail_line(double line, double side, double q0, double v, double a, double reach, double T,
+                             pool_rail rail, double *best, pool_rail *best_rail) {
+	const double gap = side * (line - q0);
+	// Apart and out of reach over the window: no contact, without the root finder.
+	if (gap > POOL_TOUCH_TOLERANCE && reach < gap)
+		return;
+	const double t = gap_contact(gap, v, a, side, T);
+	if (t < *best) {
+		*best = t;
+		*best_rail = rail;
+	}
+}
+
 // pool_predict_cushion with the contact distance dc of the table and ball radius.
 static double cushion_lines(const pool_table_def *table, double dc, const pool_ball_state *s, pool_vec3 acc, double T,
                             pool_rail *rail, pool_pocket *pocket) {
 	double best = INFINITY;
 	pool_rail best_rail = POOL_RAIL_NONE;
-	// The reach of each axis, the same for its two rails.
+	// The reach of each axis, the same for its two rails; the rails in their order (the first of
+	// two contacts at one instant wins), south and north across y.
 	const double reach_x = line_reach(s->vel.x, acc.x, T), reach_y = line_reach(s->vel.y, acc.y, T);
-	for (int r = 0; r < 4; ++r) {
-		const pool_rail rr = (pool_rail)r;
-		const double line = pool_rail_contact_line(table, dc, rr), side = pool_rail_side(rr);
-		// South / north rails: the motion normal to them is in y.
-		const int along_x = pool_rail_along_x(rr);
-		const double x0 = along_x ? s->pos.y : s->pos.x, gap = side * (line - x0);
-		// Apart and out of reach over the window: no contact, without the root finder.
-		if (gap > POOL_TOUCH_TOLERANCE && (along_x ? reach_y : reach_x) < gap)
-			continue;
-		const double t = along_x ? gap_contact(gap, s->vel.y, acc.y, side, T) : gap_contact(gap, s->vel.x, acc.x, side, T);
-		if (t < best) {
-			best = t;
-			best_rail = rr;
-		}
-	}
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_SOUTH), -1.0, s->pos.y, s->vel.y, acc.y, reach_y, T,
+	          POOL_RAIL_SOUTH, &best, &best_rail);
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_NORTH), 1.0, s->pos.y, s->vel.y, acc.y, reach_y, T,
+	          POOL_RAIL_NORTH, &best, &best_rail);
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_WEST), -1.0, s->pos.x, s->vel.x, acc.x, reach_x, T,
+	          POOL_RAIL_WEST, &best, &best_rail);
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_EAST), 1.0, s->pos.x, s->vel.x, acc.x, reach_x, T,
+	          POOL_RAIL_EAST, &best, &best_rail);
 	*rail = best_rail;
 	*pocket = POOL_POCKET_NONE;
 	if (best_rail != POOL_RAIL_NONE) {
