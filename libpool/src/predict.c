@@ -121,12 +121,8 @@ double pool_predict_ball_ball_in_reach(pool_vec3 dp, pool_vec3 dv, pool_vec3 da,
 	return ball_ball(dp, dv, da, R, T, 1);
 }
 
-// How far a coordinate x0 + v tau + a tau^2 / 2 moves over [0, T] at most, (|v| + |a| T / 2) T,
-// with a margin for that bound's rounding: a contact line farther away is out of reach.
-static inline double line_reach(double v, double a, double T) { return (fabs(v) + 0.5 * fabs(a) * T) * T * (1.0 + 1e-12); }
-
 // Earliest tau in [0, T] at which a gap side (line - x), now `gap` and not out of reach
-// (line_reach), closes along x0 + v tau + a/2 tau^2 (side +1: x increasing towards the line);
+// (pool_line_reach), closes along x0 + v tau + a/2 tau^2 (side +1: x increasing towards the line);
 // INFINITY when never.
 static double gap_contact(double gap, double v, double a, double side, double T) {
 	pool_contact_gap g;
@@ -149,7 +145,7 @@ static double gap_contact(double gap, double v, double a, double side, double T)
 static double line_contact(double x0, double v, double a, double line, double side, double T) {
 	const double gap = side * (line - x0);
 	// Apart and out of reach over the window: no contact, without the root finder.
-	if (gap > POOL_TOUCH_TOLERANCE && line_reach(v, a, T) < gap)
+	if (gap > POOL_TOUCH_TOLERANCE && pool_line_reach(v, a, T) < gap)
 		return INFINITY;
 	return gap_contact(gap, v, a, side, T);
 }
@@ -176,7 +172,7 @@ static double cushion_lines(const pool_table_def *table, double dc, const pool_b
 	pool_rail best_rail = POOL_RAIL_NONE;
 	// The reach of each axis, the same for its two rails; the rails in their order (the first of
 	// two contacts at one instant wins), south and north across y.
-	const double reach_x = line_reach(s->vel.x, acc.x, T), reach_y = line_reach(s->vel.y, acc.y, T);
+	const double reach_x = pool_line_reach(s->vel.x, acc.x, T), reach_y = pool_line_reach(s->vel.y, acc.y, T);
 	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_SOUTH), -1.0, s->pos.y, s->vel.y, acc.y, reach_y, T,
 	          POOL_RAIL_SOUTH, &best, &best_rail);
 	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_NORTH), 1.0, s->pos.y, s->vel.y, acc.y, reach_y, T,

@@ -150,12 +150,17 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 	// The rails' contact lines: a crossing within a nose segment's span is a contact with it;
 	// elsewhere the ball enters a pocket's mouth, whose parts are searched below. Every part of
 	// a pocket lies beyond the contact lines, so a ball reaches none without crossing one first
-	// in that pocket's mouth, or starting there.
+	// in that pocket's mouth, or starting there. A line out of reach over the whole segment is out
+	// of reach over the window: each axis' reach over T, taken once, leaves most rails out at once.
+	const double reach_x = pool_line_reach(s->vel.x, acc.x, T), reach_y = pool_line_reach(s->vel.y, acc.y, T);
 	for (int r = 0; r < 4; ++r) {
 		const pool_rail rail = (pool_rail)r;
 		const int along_x = pool_rail_along_x(rail);
 		const double side = pool_rail_side(rail), line = pool_rail_contact_line(&sh->table, sh->dc, rail);
 		const double q0 = along_x ? s->pos.y : s->pos.x, vq = along_x ? s->vel.y : s->vel.x, aq = along_x ? acc.y : acc.x;
+		const double gap = side * (line - q0);
+		if (gap > POOL_TOUCH_TOLERANCE && (along_x ? reach_y : reach_x) < gap)
+			continue;
 		const pool_contact_gap g = line_gap(side * (line - q0), -side * vq, -0.5 * side * aq, 0.0);
 		const double window = fmin(T, best);
 		if (g.gap > POOL_TOUCH_TOLERANCE && (fabs(g.f[1]) + fabs(g.f[2]) * window) * window * (1.0 + 1e-12) < g.gap)
