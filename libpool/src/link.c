@@ -585,6 +585,17 @@ static pool_result release(pool_link *link, const int *idx, int m, double t) {
 	return record_changed(link, t, POOL_EVENT_LINK_END, POOL_POCKET_NONE, idx, m);
 }
 
+// The pocket a member at pos has strayed into: past a rail's contact line inside a pocket mouth
+// (pockets "jaws": over a hole) and below the nose, as in flight. Above the nose a ball over a
+// pocket is not in it: it rides a nose from above (soak seed 21, mouth shot 184749 and
+// extreme_params shot 12377: a ball landing on a facing from above was linked at once and
+// dropped into the hole 2R above the cloth).
+static pool_pocket stray_pocket(const pool_link *link, pool_vec3 pos) {
+	if (!(pos.z < link->def->table.cushion_height))
+		return POOL_POCKET_NONE;
+	return pool_table_pocket_past(&link->def->table, link->dc, pos);
+}
+
 // Members past a rail's contact line inside a pocket mouth at t (the step's LCP has no rail
 // there; the crossing's own pocket event is predicted, this catches a ball that was already
 // past the line when its segment began) fall into that pocket now.
@@ -594,7 +605,7 @@ static pool_result pocket_strays(pool_link *link, int c, double t) {
 			continue;
 		pool_ball_state s;
 		state_at(link, k, t, &s);
-		const pool_pocket pocket = pool_table_pocket_past(&link->def->table, link->dc, s.pos);
+		const pool_pocket pocket = stray_pocket(link, s.pos);
 		if (pocket == POOL_POCKET_NONE)
 			continue;
 		if (link->world.reserve(link->world.ctx, 1, 1))
@@ -757,7 +768,7 @@ pool_result pool_link_step_event(pool_link *link, int i, double t) {
 		if (!link->mark[k])
 			continue;
 		++gathered;
-		if (pool_table_pocket_past(&link->def->table, link->dc, link->now[k].pos) != POOL_POCKET_NONE)
+		if (stray_pocket(link, link->now[k].pos) != POOL_POCKET_NONE)
 			++strays;
 		else
 			loose_now += link->cluster_of[k] == c && link->loose[k];

@@ -207,6 +207,13 @@ double pool_predict_cushion_shape(const pool_table_shape *sh, const pool_ball_st
 	return t;
 }
 
+/// m: how far past a rail's contact line a flight may land and stay on the table: as far as a
+/// ball may be placed past it (POOL_TOUCH_TOLERANCE, falling straight down from there) and the
+/// landing point's rounding (a few ulps of the table's size, 1e-15 m). It was 2
+/// POOL_TOUCH_TOLERANCE: a flight over a mouth's line landing 1 to 2 nm past it stayed on the
+/// cloth there, further out than any ball may be (test_flight: test_landing_past_a_mouth_line).
+#define LANDING_PAST_LINE (POOL_TOUCH_TOLERANCE + 1e-12)
+
 // The first instant in (after, window] at which a flying ball's distance to a nose line
 // (relative path dp + dv tau + da tau^2 in the rail's normal plane) falls to R while closing,
 // with the ball's coordinate along the rail (a0 + va tau + aa tau^2 / 2) outside the pocket
@@ -327,8 +334,7 @@ double pool_predict_flight(const pool_table_def *table, double R, const pool_bal
 		for (int r = 0; r < 4; ++r) {
 			const pool_rail rr = (pool_rail)r;
 			const double q = pool_rail_along_x(rr) ? at.y : at.x;
-			// (past it by more than a touching ball may be: its tolerance and its rounding)
-			if (pool_rail_side(rr) * (pool_rail_contact_line(table, dc, rr) - q) < -2.0 * POOL_TOUCH_TOLERANCE) {
+			if (pool_rail_side(rr) * (pool_rail_contact_line(table, dc, rr) - q) < -LANDING_PAST_LINE) {
 				*pocket = pool_pocket_at(table, rr, pool_rail_along_x(rr) ? at.x : at.y);
 				*kind = *pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_OFF_TABLE;
 				*rail = rr;

@@ -3,6 +3,7 @@
 // segment or facing is its line within its span, a jaw its circle within its arc, a hole its edge.
 // A root whose contact point lies outside the part (on the line's or circle's extension: a ghost)
 // is no contact, and the search goes on past it.
+#include <float.h>
 #include <math.h>
 
 #include "contact.h"
@@ -223,7 +224,17 @@ double pool_predict_hole_jaws(const pool_table_shape *sh, const pool_ball_state 
 		const double reach = (hypot(q.v.x, q.v.y) + hypot(q.a.x, q.a.y) * T) * T * (1.0 + 1e-12);
 		if (hypot(q.p.x - ps->hx, q.p.y - ps->hy) - ps->hole_radius > reach + POOL_TOUCH_TOLERANCE)
 			continue;
-		const double t = enter_circle(&q, ps->hx, ps->hy, ps->hole_radius, fmin(T, best));
+		double t = enter_circle(&q, ps->hx, ps->hy, ps->hole_radius, fmin(T, best));
+		// Into it below the nose only, as in flight: a ball above the nose over a hole (riding
+		// a facing's or jaw's nose line from above) is not in the pocket (soak seed 21, mouth
+		// shot 184749 and extreme_params shot 12377: a ball landing on a facing from above,
+		// linked at once, dropped into the hole 2R above the cloth). A linked ball moves
+		// uniformly: if it comes down below the nose while over the hole, it falls in then.
+		if (t < best && !(q.p.z + (q.v.z + q.a.z * t) * t < sh->table.cushion_height)) {
+			const double below = q.a.z == 0.0 && q.v.z < 0.0 ? (q.p.z - sh->table.cushion_height) / -q.v.z : INFINITY;
+			const pool_vec3 at = path_at(&q, below);
+			t = below <= fmin(T, best) && hypot(at.x - ps->hx, at.y - ps->hy) <= ps->hole_radius ? below : INFINITY;
+		}
 		if (t < best) {
 			best = t;
 			*pocket = (pool_pocket)p;
@@ -251,15 +262,11 @@ static int jaw_root_counts(const pool_nose_part *np, const path *w, double R, do
 	return in_span(np, plan);
 }
 
-static double flight_jaw(const pool_nose_part *np, const path *q, double R, double h, double T) {
-	const path w = relative(q, np->ax, np->ay, h);
-	const double r = np->length;
-	if (!(r > 0.0)) { // a sharp jaw: a point
-		const pool_contact_gap g = sphere_gap(&w, R);
-		return part_contact(np, &g, q, T);
-	}
-	const double X[3] = {w.p.x, w.v.x, w.a.x}, Y[3] = {w.p.y, w.v.y, w.a.y}, Z[3] = {w.p.z, w.v.z, w.a.z};
-	double xx[5], yy[5], zz[5], rho2[5], Q[5], F[9], QQ[9];
+// F of a path w relative to the jaw's centre at the nose height (above), into F[9]; rho2[5]
+// receives rho^2.
+static void jaw_gap_poly(const path *w, double r, double R, double F[9], double rho2[5]) {
+	const double X[3] = {w->p.x, w->v.x, w->a.x}, Y[3] = {w->p.y, w->v.y, w->a.y}, Z[3] = {w->p.z, w->v.z, w->a.z};
+	double xx[5], yy[5], zz[5], Q[5], QQ[9];
 	pool_poly_mul(X, 2, X, 2, xx);
 	pool_poly_mul(Y, 2, Y, 2, yy);
 	pool_poly_mul(Z, 2, Z, 2, zz);
@@ -271,6 +278,51 @@ static double flight_jaw(const pool_nose_part *np, const path *q, double R, doub
 	pool_poly_mul(Q, 4, Q, 4, QQ);
 	for (int k = 0; k < 9; ++k)
 		F[k] = QQ[k] - (k < 5 ? 4.0 * r * r * rho2[k] : 0.0);
+}
+
+/// m: a root of the jaw's F whose position along the path its rounding leaves more uncertain
+/// than this is searched again on F rebuilt from the path where the uncertainty begins (a
+/// hundredth of POOL_TOUCH_TOLERANCE: below it a root stays as found, bit for bit).
+#define JAWS_ROOT_UNCERTAINTY 1e-11
+
+// F is a square of distances squared: far along a long flight (seconds, metres up and down) its
+// terms reach 1e5 where it crosses zero with a slope of 1e-3 per second, and its rounding moves
+// the root by nanoseconds, 0.2 um at the 18 m/s of a ball falling from 4 m (soak seed 2, mouth
+// shot 40719: the ball was 2.35e-7 m into the jaw at the contact). The uncertainty is the
+// rounding of F's evaluation at t over its slope there; where it matters the path is restarted
+// at the earliest time the root may be and F rebuilt from there (terms of the size of the ball's
+// local motion), and its first root from there is the contact.
+static double polish_jaw_root(const path *w, const double F[9], double r, double R, double t, double lo, double T) {
+	double size = 0.0, slope = 0.0, power = 1.0;
+	for (int k = 0; k <= 8; ++k) {
+		size += fabs(F[k]) * power;
+		if (k < 8)
+			slope += (k + 1) * F[k + 1] * power;
+		power *= t;
+	}
+	const pool_vec3 vel = pool_v3_madd(w->v, 2.0 * t, w->a);
+	const double uncertainty = 16.0 * DBL_EPSILON * size / fabs(slope);
+	if (!(uncertainty * pool_v3_len(vel) > JAWS_ROOT_UNCERTAINTY))
+		return t;
+	const double from = fmax(lo, t - 2.0 * uncertainty), to = fmin(T, t + 2.0 * uncertainty);
+	path ws = *w;
+	ws.p = path_at(w, from);
+	ws.v = pool_v3_madd(w->v, 2.0 * from, w->a);
+	double Fs[9], rho2[5];
+	jaw_gap_poly(&ws, r, R, Fs, rho2);
+	const double u = pool_poly_first_falling_root(Fs, 8, 0.0, to - from);
+	return u <= to - from ? from + u : t;
+}
+
+static double flight_jaw(const pool_nose_part *np, const path *q, double R, double h, double T) {
+	const path w = relative(q, np->ax, np->ay, h);
+	const double r = np->length;
+	if (!(r > 0.0)) { // a sharp jaw: a point
+		const pool_contact_gap g = sphere_gap(&w, R);
+		return part_contact(np, &g, q, T);
+	}
+	double F[9], rho2[5];
+	jaw_gap_poly(&w, r, R, F, rho2);
 	// Now: the distance to the circle and its rates (d = |(rho - r, z)|).
 	const double rho = sqrt(rho2[0]);
 	const double drho = rho > 0.0 ? (w.p.x * w.v.x + w.p.y * w.v.y) / rho : 0.0;
@@ -298,9 +350,11 @@ static double flight_jaw(const pool_nose_part *np, const path *q, double R, doub
 	}
 	t = pool_poly_first_falling_root(F, 8, lo, T);
 	for (int i = 0; t <= T && i < JAWS_MAX_GHOSTS; ++i) {
+		const double found_at = t;
+		t = polish_jaw_root(&w, F, r, R, t, lo, T);
 		if (jaw_root_counts(np, &w, R, t))
 			return t;
-		t = pool_poly_first_falling_root(F, 8, t + JAWS_GHOST_STEP * (1.0 + t), T);
+		t = pool_poly_first_falling_root(F, 8, fmax(t, found_at) + JAWS_GHOST_STEP * (1.0 + fmax(t, found_at)), T);
 	}
 	return INFINITY;
 }

@@ -27,6 +27,11 @@
 //   nose           full-size tables (7, 8, 9 ft) with noses from ~0 to ~2R high (the nose at and
 //                  just above the ball's centre, and just below its top), ordinary cloth, the
 //                  layouts above
+//   mouth          the nose class's tables with one or two balls moved onto a pocket mouth's
+//                  contact lines: a corner's two lines at once, along a corner's line inside its
+//                  mouth or at its edge, a side mouth inside or at its edges, each exactly on the
+//                  line or within +-1e-15..1e-9 m of it (or 1e-6, 1e-4 m inside), at rest or
+//                  moving at 1e-6..3 m/s any way (soak seed 1, nose shot 5385 was such a ball)
 // A third of every class's shots are airborne (options.airborne), and a third of those throw
 // balls into the air as well. Half the shots of every class but tiny_table are on real pockets
 // (pockets "jaws": the presets' facings, jaws and holes), the others on the thesis model's lines. Tables with a nose at or below the ball's centre, or above 1.9 R,
@@ -44,7 +49,9 @@
 //               from the nose lines) by more than POOL_TOUCH_TOLERANCE, same samples; in flight,
 //               no ball closer than R to a nose (its line outside the pocket mouths, ending at
 //               their edges), none past the
-//               table's edge (it leaves: off_table), none below the cloth
+//               table's edge (it leaves: off_table), none below the cloth; on the cloth (its
+//               motion) none past a mouth's contact line; a flight across a mouth's contact line
+//               crosses it above the nose (below, the ball falls into the pocket there)
 //   pocket      a pocket event happens inside the lines, on a rail line (HS_TOL_POCKET_LINE) and
 //               in the mouth of the pocket it names (in flight: over the mouth, at or past the
 //               contact line, inside the table's edge)
@@ -140,10 +147,11 @@ typedef enum hs_class {
 	HS_TINY_TABLE,
 	HS_EXTREME_PARAMS,
 	HS_NOSE,
+	HS_MOUTH,
 	HS_CLASS_COUNT
 } hs_class;
 static const char *const hs_class_names[HS_CLASS_COUNT] = {
-	"layout", "rail_struck", "rail_drift", "pair", "cluster", "masse", "tiny_table", "extreme_params", "nose"};
+	"layout", "rail_struck", "rail_drift", "pair", "cluster", "masse", "tiny_table", "extreme_params", "nose", "mouth"};
 
 typedef enum hs_check_kind {
 	HS_CK_API,
@@ -833,6 +841,49 @@ static inline void hs_gen_nose(hs_shot *s, hs_rng *r) {
 	}
 }
 
+// The mouth class: the nose class's shot, then one or two balls (the cue ball among them, at
+// rest) moved onto the contact lines of a pocket mouth, on them or within rounding of them,
+// where they fit.
+static inline void hs_gen_mouth(hs_shot *s, hs_rng *r) {
+	hs_gen_nose(s, r);
+	static const double off[] = {0.0, 0.0, 0.0, -1e-9, -5e-10, -1e-12, -1e-15, 1e-15, 1e-12, 5e-10, 1e-9, -1e-6, -1e-4};
+	const int n_off = (int)(sizeof off / sizeof off[0]);
+	const double R = s->def.params.ball_radius, L = s->def.table.length, W = s->def.table.width;
+	const double dc = hs_dc(&s->def), c = s->def.table.corner_mouth / sqrt(2.0), sm = s->def.table.side_mouth;
+	const int moves = 1 + hs_int(r, 2);
+	for (int m = 0; m < moves && s->n > 0; ++m) {
+		const int i = hs_int(r, s->n);
+		const int east = hs_int(r, 2), north = hs_int(r, 2), kind = hs_int(r, 4);
+		const double a = off[hs_int(r, n_off)], b = off[hs_int(r, n_off)]; // > 0: past the line
+		// along: from the corner, inside the mouth (dc..c + R) or at its edge c (within rounding)
+		const double along = hs_chance(r, 0.5) ? hs_range(r, dc, c + R) : c + off[hs_int(r, n_off)];
+		double x = east ? L - dc + a : dc - a, y = north ? W - dc + b : dc - b;
+		if (kind == 1) // along the east or west line
+			y = north ? W - along : along;
+		else if (kind == 2) // along the north or south line
+			x = east ? L - along : along;
+		else if (kind == 3) // a side mouth: inside, or at an edge within rounding
+			x = 0.5 * L + (hs_chance(r, 0.5) ? hs_range(r, -0.5 * sm - R, 0.5 * sm + R)
+			                                 : (east ? 1.0 : -1.0) * (0.5 * sm + off[hs_int(r, n_off)]));
+		const pool_ball_state keep = s->balls[i];
+		s->balls[i].pos = hs_xy(-1e9, -1e9, -1e9); // out of the way while it is tested
+		const pool_vec3 p = hs_xy(x, y, R);
+		if (!hs_fits(s, p)) {
+			s->balls[i] = keep;
+			continue;
+		}
+		memset(&s->balls[i].vel, 0, sizeof s->balls[i].vel);
+		memset(&s->balls[i].omega, 0, sizeof s->balls[i].omega);
+		s->balls[i].pos = p;
+		if (i == s->cue || hs_chance(r, 0.25))
+			continue; // at rest (the struck ball must be)
+		const double speed = exp(hs_range(r, log(1e-6), log(3.0))), dir = hs_range(r, 0.0, 2.0 * HS_PI);
+		s->balls[i].vel = hs_xy(speed * cos(dir), speed * sin(dir), 0.0);
+		if (hs_chance(r, 0.5))
+			s->balls[i].omega = hs_xy(hs_range(r, -80.0, 80.0), hs_range(r, -80.0, 80.0), hs_range(r, -20.0, 20.0));
+	}
+}
+
 // Balls thrown into the air (airborne shots): up to two balls other than the cue ball lifted up
 // to 0.25 m and thrown at up to 2 m/s (mostly upwards), with spin, where they fit.
 static inline void hs_throw_balls(hs_shot *s, hs_rng *r) {
@@ -899,6 +950,7 @@ static inline void hs_make(hs_shot *s, uint64_t seed, long index, int cls) {
 	case HS_MASSE: hs_gen_masse(s, &r); break;
 	case HS_TINY_TABLE: hs_gen_tiny_table(s, &r); break;
 	case HS_EXTREME_PARAMS: hs_gen_extreme_params(s, &r); break;
+	case HS_MOUTH: hs_gen_mouth(s, &r); break;
 	default: hs_gen_nose(s, &r); break;
 	}
 	// Again after the generators (the nose class takes a preset's table). The cut angles as
@@ -1132,13 +1184,20 @@ static inline pool_vec3 hs_nose_point(const pool_sim_def *def, int rail, pool_ve
 	return q;
 }
 
-// How far a ball centred at p (airborne motion: on the cloth or in the air) is where no ball in
-// play may be (> 0: a violation, m): below the cloth, past the table's edge (a ball clearing a
-// rail leaves the table: off_table), closer than R to a nose (its line outside the pocket
-// mouths, ending at their edges),
-// or, on the cloth over a mouth, past the contact line (it falls into the pocket there).
-static inline double hs_outside_air(const pool_sim_def *def, double dc, pool_vec3 p) {
+// How far a ball (airborne motion: on the cloth or in the air) is where no ball in play may be
+// (> 0: a violation, m): below the cloth, past the table's edge (a ball clearing a rail leaves
+// the table: off_table), closer than R to a nose (its line outside the pocket mouths, ending at
+// their edges), or, on the cloth over a mouth, past the contact line (it falls into the pocket
+// there). "On the cloth" is the ball's motion, not its height: a ball in flight that crossed
+// the line over a mouth above the nose flies on until it lands (docs/physics.md "Predicting
+// events"), and with a nose within 1e-9 m of R it crosses lower than R + POOL_TOUCH_TOLERANCE
+// (soak seed 1, nose shot 5385: launched at 1.2 cm/s from 1e-9 m inside the line, it crossed
+// 1.2e-11 m above the cloth, 1e-11 m above the nose). hs_mouth_crossing checks that a flight
+// crosses a mouth's line above the nose.
+static inline double hs_outside_air(const pool_sim_def *def, double dc, const pool_ball_state *b) {
 	const double R = def->params.ball_radius;
+	const pool_vec3 p = b->pos;
+	const int on_cloth = b->motion != POOL_MOTION_AIRBORNE && p.z <= R + POOL_TOUCH_TOLERANCE;
 	double worst = R - p.z;
 	for (int rail = 0; rail < 4; ++rail) {
 		const double in = hs_inside_edge(def, rail, p);
@@ -1146,8 +1205,34 @@ static inline double hs_outside_air(const pool_sim_def *def, double dc, pool_vec
 		const double along = rail <= POOL_RAIL_NORTH ? p.x : p.y;
 		const pool_vec3 q = hs_nose_point(def, rail, p); // (the nose's end over a mouth)
 		worst = fmax(worst, R - sqrt((p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) + (p.z - q.z) * (p.z - q.z)));
-		if (hs_pocket_at(&def->table, rail, along) != POOL_POCKET_NONE && p.z <= R + POOL_TOUCH_TOLERANCE)
+		if (hs_pocket_at(&def->table, rail, along) != POOL_POCKET_NONE && on_cloth)
 			worst = fmax(worst, dc - in);
+	}
+	return worst;
+}
+
+// A flight (segment `seg`, airborne: straight across the cloth, gravity on z alone) that began
+// inside a rail's contact line and at `dt` into it is past that line by more than the tolerance
+// crossed it at some instant; over a pocket mouth it must have crossed at or above the nose, or
+// it would have fallen into the pocket there. Returns how far below the nose it crossed (> 0: a
+// ball let through a mouth's line, m), -INFINITY when it crossed no such line.
+static inline double hs_mouth_crossing(const pool_sim_def *def, double dc, const pool_ball_state *seg, double dt) {
+	double worst = -INFINITY;
+	if (seg->motion != POOL_MOTION_AIRBORNE)
+		return worst;
+	pool_vec3 end = seg->pos;
+	end.x += seg->vel.x * dt;
+	end.y += seg->vel.y * dt;
+	for (int rail = 0; rail < 4; ++rail) {
+		const double in0 = hs_inside_edge(def, rail, seg->pos) - dc, in1 = hs_inside_edge(def, rail, end) - dc;
+		if (!(in0 >= 0.0 && in1 < -HS_TOL_LENGTH))
+			continue;
+		const double tau = dt * in0 / (in0 - in1); // the crossing: in(t) is linear in t
+		const double along = rail <= POOL_RAIL_NORTH ? seg->pos.x + seg->vel.x * tau : seg->pos.y + seg->vel.y * tau;
+		if (hs_pocket_at(&def->table, rail, along) == POOL_POCKET_NONE)
+			continue; // the nose is there: the distance to it is hs_outside_air's
+		const double z = seg->pos.z + seg->vel.z * tau - 0.5 * def->params.g * tau * tau;
+		worst = fmax(worst, def->table.cushion_height - z);
 	}
 	return worst;
 }
@@ -1186,7 +1271,7 @@ static inline void hs_check_positions(const hs_shot *s, const pool_table_shape *
 				            "t=%.17g: ball %d at (%.17g, %.17g, %.17g) is %.3g m into the nose curve, the cloth or over a hole",
 				            t, (int)b[i].id, b[i].pos.x, b[i].pos.y, b[i].pos.z, out);
 		} else if (s->def.airborne) {
-			const double out = hs_outside_air(&s->def, dc, b[i].pos);
+			const double out = hs_outside_air(&s->def, dc, &b[i]);
 			if (out > st->worst_rail)
 				st->worst_rail = out;
 			if (!(out <= (linked ? HS_TOL_LINK_LENGTH : HS_TOL_LENGTH)))
@@ -1522,6 +1607,13 @@ static inline void hs_check(const pool_sim *sim, const hs_shot *s, const pool_ba
 			for (int i = 0; i < n; ++i)
 				pool_motion_evolve(p, &seg[i], ts - t0[i], &now[i]);
 			hs_check_positions(s, jaws, dc, now, ts, st, rep);
+			for (int i = 0; i < n && !jaws && s->def.airborne; ++i) {
+				const double below = hs_on_table(&now[i]) ? hs_mouth_crossing(&s->def, dc, &seg[i], ts - t0[i]) : -INFINITY;
+				if (!(below <= HS_TOL_LENGTH))
+					hs_fail_mag(rep, HS_CK_RAIL, below,
+					            "t=%.17g: ball %d crossed a contact line over a mouth in flight %.3g m below the nose, and flew on",
+					            ts, (int)now[i].id, below);
+			}
 			++samples;
 			if ((k == 0 || k == K / 2 + 1) && (e % state_at_every == 0) && state_at_checks < 2 * HS_STATE_AT_CHECKS) {
 				++state_at_checks;

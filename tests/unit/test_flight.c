@@ -434,6 +434,45 @@ static void sample_geometry(const pool_sim *sim, const pool_sim_def *def, double
 	}
 }
 
+// A flight that crosses a corner mouth's contact line above the nose and lands past that line
+// falls into the pocket where it lands (docs/physics.md "Predicting events"), unless it lands
+// within POOL_TOUCH_TOLERANCE of the line: no further than a ball may be placed past it. The
+// nose class's nose (2e-12 m above the ball's centre) lets a ball fly over the line barely off
+// the cloth: from 0.5e-9 m inside the line, 4.9e-8 m up, it lands T = 1e-4 s later; backspin
+// sends it back in. Landing 1.2 to 1.9 nm past the line it stayed on the cloth there (the
+// landing took 2 POOL_TOUCH_TOLERANCE for the line), out in the mouth by more than any ball may be.
+static void test_landing_past_a_mouth_line(void **state) {
+	(void)state;
+	pool_sim_def def = air_def();
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES;
+	const double R = def.params.ball_radius, g = def.params.g, L = def.table.length, W = def.table.width;
+	def.table.cushion_height = R + 2e-12;
+	const double dc = pool_table_contact_distance(&def.table, R), T = 1e-4;
+	const double past[] = {0.5e-9, 0.9e-9, 1.2e-9, 1.5e-9, 1.9e-9};
+	for (int k = 0; k < 5; ++k) {
+		pool_sim *sim = make(&def);
+		const double vx = (past[k] + 0.5e-9) / T;
+		add(sim, 0, pool_v3(L - dc - 0.5e-9, W - 0.05, R + 0.5 * g * T * T), pool_v3(vx, 0, 0), pool_v3(0, -1.0, 0));
+		assert_int_equal(pool_sim_run(sim), POOL_OK);
+		int n;
+		const pool_event *ev = pool_sim_events(sim, &n);
+		const pool_ball_state *a = pool_sim_event_states(sim, &ev[0]);
+		printf("landing %.2g m past the line: %s at t = %.9g s, %.3g m past it\n", past[k], pool_event_type_name(ev[0].type),
+		       ev[0].time, a->pos.x - (L - dc));
+		near_rel(ev[0].time, T, 1e-6);
+		if (past[k] > POOL_TOUCH_TOLERANCE) {
+			assert_int_equal(ev[0].type, POOL_EVENT_POCKET);
+			assert_int_equal(ev[0].pocket, POOL_POCKET_NE);
+		} else { // on the line within its tolerance: it lands, and its backspin brings it back in
+			assert_int_equal(ev[0].type, POOL_EVENT_BALL_TABLE);
+			assert_int_equal(pool_sim_balls(sim)[0].motion, POOL_MOTION_STATIONARY);
+			assert_true(pool_sim_balls(sim)[0].pos.x < L - dc);
+		}
+		pool_sim_destroy(sim);
+	}
+}
+
+
 static void test_random_airborne_shots(void **state) {
 	(void)state;
 	pool_sim_def def = air_def();
@@ -547,6 +586,7 @@ int main(void) {
 		cmocka_unit_test(test_falling_on_resting),
 		cmocka_unit_test(test_cushion_hop),
 		cmocka_unit_test(test_linked_ball_between_mouth_ends),
+		cmocka_unit_test(test_landing_past_a_mouth_line),
 		cmocka_unit_test(test_random_airborne_shots),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -216,19 +216,13 @@ static void test_families(void **state) {
 		}
 }
 
-// A ball linked (LINK) against a facing slides into the hole during a step: the hole's edge
-// must be its event even though the part it touches is "contacted" at once (a part contact is
-// the step's LCP's, no event; taken as the earliest prediction it hid the hole, and the ball
-// slid 0.34 mm over the hole before the next step dropped it). The soak's shot (seed 1, index
-// 16635, class nose): a 7 ft table with a high nose (1.85 R) and the thesis models.
-static void test_linked_into_hole(void **state) {
-	(void)state;
-	pool_sim_def def = thesis_sim_def();
+// A soak shot's jaws table as its scenario prints it: the WPA pockets (mouths, cut angles,
+// jaws, shelves and holes) on a table of this size and nose height.
+static void soak_jaws_table(pool_table_def *t, double length, double width, double nose) {
 	const double deg = 3.14159265358979323846 / 180.0;
-	pool_table_def *t = &def.table;
-	t->length = 1.9811999999999999;
-	t->width = 0.99059999999999993;
-	t->cushion_height = 0.053004041623678999;
+	t->length = length;
+	t->width = width;
+	t->cushion_height = nose;
 	t->corner_mouth = 0.1143;
 	t->side_mouth = 0.127;
 	t->pockets = POOL_POCKETS_JAWS;
@@ -240,6 +234,18 @@ static void test_linked_into_hole(void **state) {
 	t->side_shelf = 0.0047624999999999994;
 	t->corner_hole_radius = 0.069849999999999995;
 	t->side_hole_radius = 0.07619999999999999;
+}
+
+// A ball linked (LINK) against a facing slides into the hole during a step: the hole's edge
+// must be its event even though the part it touches is "contacted" at once (a part contact is
+// the step's LCP's, no event; taken as the earliest prediction it hid the hole, and the ball
+// slid 0.34 mm over the hole before the next step dropped it). The soak's shot (seed 1, index
+// 16635, class nose): a 7 ft table with a high nose (1.85 R) and the thesis models.
+static void test_linked_into_hole(void **state) {
+	(void)state;
+	pool_sim_def def = thesis_sim_def();
+	const double deg = 3.14159265358979323846 / 180.0;
+	soak_jaws_table(&def.table, 1.9811999999999999, 0.99059999999999993, 0.053004041623678999);
 	def.airborne = false;
 	pool_table_shape sh;
 	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
@@ -283,7 +289,109 @@ static void test_linked_into_hole(void **state) {
 	pool_sim_destroy(sim);
 }
 
+// A ball struck straight up from a corner mouth's edge (soak seed 2, mouth shot 40719: 12 m/s at
+// 89 deg and full draw, on an 8 ft table with the nose 2e-10 m above the ball's centre) flies
+// 4.2 m up and comes down 1.86 s later onto the south-east jaw at 18 m/s. The jaw's contact in
+// flight is a root of a degree-8 polynomial in the time since the flight began, whose terms grow
+// to 1e5 by then: its rounding put the contact 2.35e-7 m inside the jaw. At the contact and on
+// samples every 0.2 ns around it the ball is no nearer the nose curve than R (within 1e-9 m).
+static void test_long_flight_onto_a_jaw(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	const double deg = 3.14159265358979323846 / 180.0;
+	soak_jaws_table(&def.table, 2.3367999999999998, 1.1683999999999999, 0.028575000195715631);
+	def.airborne = true;
+	def.max_time = 60;
+	def.max_events = 20000;
+	pool_table_shape sh;
+	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
+	pool_sim *sim = make_sim(&def);
+	pool_ball_state b;
+	memset(&b, 0, sizeof b);
+	b.pos = pool_v3(2.2559786949103775, 0.028574999999999001, def.params.ball_radius);
+	add_ball(sim, &b);
+	const pool_strike strike = {12.0, 90 * deg, 89 * deg, -5.2491423033183011e-18, -0.02857499978482481};
+	assert_int_equal(pool_sim_strike(sim, 0, &strike, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	int ne, jaw = -1;
+	const pool_event *ev = pool_sim_events(sim, &ne);
+	for (int e = 0; e < ne && jaw < 0; ++e)
+		if (ev[e].type == POOL_EVENT_BALL_CUSHION && ev[e].part == POOL_PART_JAW)
+			jaw = e;
+	assert_true(jaw >= 0);
+	const double tc = ev[jaw].time;
+	stats st;
+	memset(&st, 0, sizeof st);
+	st.worst_inside = st.worst_overlap = -INFINITY;
+	sample(sim, &sh, &def, tc, &st);
+	const double at_contact = st.worst_inside;
+	for (int i = -50; i < 0; ++i) // (the state at tc is the contact's; before it, the flight)
+		sample(sim, &sh, &def, tc + i * 2e-10, &st);
+	printf("long flight onto a jaw: contact at t = %.12g s, %.3g m inside the nose curve there, worst %.3g m\n", tc,
+	       at_contact, st.worst_inside);
+	assert_true(tc > 1.8 && ev[jaw].pocket == POOL_POCKET_SE);
+	assert_true(st.worst_inside <= POSITION_TOLERANCE);
+	pool_sim_destroy(sim);
+}
+
+// A ball struck almost straight down with full side (soak seed 21, mouth shot 184749: 7 ft, the
+// nose 8e-11 m above the ball's centre) hops along the north-east facing's nose line from above,
+// 2R above the cloth, with its centre over the pocket's hole; LINK takes it at the facing's
+// repeated contacts. Over a hole above the nose a ball is not in the pocket (in flight it flies
+// on): it was pocketed at once, 2R above the cloth. Every pocket event is below the nose, and at
+// the events and on samples no ball is inside the nose curve.
+static void test_linked_above_a_hole(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	const double deg = 3.14159265358979323846 / 180.0;
+	soak_jaws_table(&def.table, 1.9811999999999999, 0.99059999999999993, 0.028575000079588804);
+	def.airborne = true;
+	def.max_time = 60;
+	def.max_events = 20000;
+	pool_table_shape sh;
+	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
+	pool_sim *sim = make_sim(&def);
+	const double R = def.params.ball_radius;
+	pool_ball_state b;
+	memset(&b, 0, sizeof b);
+	b.pos = pool_v3(0.070980322776401386, 0.96202499999999991, R);
+	b.vel = pool_v3(-0.00056588838332504582, -0.00075526811793557344, 0);
+	b.omega = pool_v3(-51.419342007938425, -27.601371442546977, 13.706935021251141);
+	add_ball(sim, &b);
+	memset(&b, 0, sizeof b);
+	b.id = 1;
+	b.pos = pool_v3(1.9168974015108371, 0.96202399999999988, R);
+	add_ball(sim, &b);
+	const pool_strike strike = {2.6164080278772657, 0.0, 85.218218050182514 * deg, -0.028574999999971425, 3.4994282285600623e-18};
+	assert_int_equal(pool_sim_strike(sim, 1, &strike, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	stats st;
+	memset(&st, 0, sizeof st);
+	st.worst_inside = st.worst_overlap = -INFINITY;
+	int ne, linked = 0;
+	double highest_pocket = -INFINITY;
+	const pool_event *ev = pool_sim_events(sim, &ne);
+	for (int e = 0; e < ne; ++e) {
+		linked += ev[e].type == POOL_EVENT_LINK_BEGIN;
+		if (ev[e].type == POOL_EVENT_POCKET) {
+			// (the pocketed ball's state keeps where it left play)
+			highest_pocket = fmax(highest_pocket, pool_sim_event_states(sim, &ev[e])->pos.z);
+		}
+		sample(sim, &sh, &def, ev[e].time, &st);
+	}
+	const double end = pool_sim_end_time(sim);
+	for (int i = 0; i <= 20 * SAMPLES; ++i)
+		sample(sim, &sh, &def, end * i / (20 * SAMPLES), &st);
+	printf("linked above a hole: %d events, %d link_begin, highest pocket event %.6g m above the nose, worst inside %.3g m\n",
+	       ne, linked, highest_pocket - def.table.cushion_height, st.worst_inside);
+	assert_true(linked > 0); // the shot still reaches LINK on the facing
+	assert_true(highest_pocket <= def.table.cushion_height);
+	assert_true(st.worst_inside <= POSITION_TOLERANCE);
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
-	const struct CMUnitTest tests[] = {cmocka_unit_test(test_families), cmocka_unit_test(test_linked_into_hole)};
+	const struct CMUnitTest tests[] = {cmocka_unit_test(test_families), cmocka_unit_test(test_linked_into_hole),
+	                                   cmocka_unit_test(test_long_flight_onto_a_jaw), cmocka_unit_test(test_linked_above_a_hole)};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

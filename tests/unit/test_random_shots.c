@@ -347,7 +347,119 @@ static void test_hostile_shots(void **state) {
 	pool_sim_destroy(again);
 }
 
+// A ball on the line of a corner mouth thrown up by a collision flies over the mouth: soak seed 1,
+// nose shot 5385 (a 7 ft table, the nose 2e-12 m above the ball's centre). Ball 1 lies 1e-9 m
+// inside the east contact line and on the north one, both over the north-east mouth; ball 2's
+// hit at t = 7.9e-10 s sends it out across the east line at 1.02 m/s and up at 1.2 cm/s, so it
+// crosses that line 1.2e-11 m above the cloth, 1e-11 m above the nose: in flight, above the
+// nose, it flies on over the mouth and drops into the pocket where it lands, 2 v_z / g later.
+// The soak's check took a ball within POOL_TOUCH_TOLERANCE of the cloth for one on it and failed
+// the shot (2.8e-9 m past the line); whether a ball flies is its motion, and hs_mouth_crossing
+// checks the height at which a flight crossed a mouth's line.
+static void test_flight_over_a_mouth(void **state) {
+	(void)state;
+	hs_shot s;
+	memset(&s, 0, sizeof s);
+	s.cls = HS_NOSE;
+	s.seed = 1;
+	s.index = 5385;
+	s.origin = "test_random_shots.c: test_flight_over_a_mouth";
+	s.def = pool_default_sim_def();
+	pool_table_def *t = &s.def.table;
+	t->length = 1.9811999999999999;
+	t->width = 0.99059999999999993;
+	t->cushion_height = 0.028575000001969376;
+	t->corner_mouth = 0.1143;
+	t->side_mouth = 0.127;
+	t->pockets = POOL_POCKETS_MOUTH_LINES;
+	pool_params *p = &s.def.params;
+	p->mu_slide = 0.2;
+	p->mu_roll = 0.01;
+	p->mu_spin = 0.0127;
+	p->mu_ball = 0.06;
+	p->e_ball = 0.95;
+	p->mu_cushion = 0.2;
+	p->e_cushion = 0.85;
+	p->mu_table = 0.2;
+	p->e_table = 0.5;
+	s.def.airborne = true;
+	s.def.max_time = 60;
+	s.def.max_events = 20000;
+	const double R = p->ball_radius, h = t->cushion_height;
+	const pool_ball_state balls[4] = {
+	    {.id = 0, .pos = {1.9526249999999998, 0.1474287308511753, R}, .vel = {1.7637375306639954e-07, 5.8207660913467407e-11, 0},
+	     .omega = {17.601200516553597, 6.4405117128685383, 0}},
+	    {.id = 1, .pos = {1.9526249989999998, 0.96202499999999991, R}, .vel = {-1.8189894035458565e-12, -2.3274810654129219, 0},
+	     .omega = {79.912517721753346, 2.068984752486295, 0}},
+	    {.id = 2, .pos = {1.9046514431383008, 0.93096601495083164, R}, .vel = {7.071205030357851e-10, 4.5780315295083514e-10, 0}},
+	    {.id = 3, .pos = {1.675050462056096, 0.38616610900406306, R}}};
+	memcpy(s.balls, balls, sizeof balls);
+	s.n = 4;
+	s.cue = 3;
+	s.speed = 0.0020396482034417533;
+	s.phi_deg = 159.6285430304813;
+	s.theta_deg = 71.840765146727847;
+	s.b = -0.02250180945290977;
+	const pool_strike strike = {s.speed, s.phi_deg * M_PI / 180.0, s.theta_deg * M_PI / 180.0, 0.0, s.b};
+	s.strike = strike;
+
+	pool_sim *sim;
+	assert_int_equal(pool_sim_create(&s.def, &sim, NULL), POOL_OK);
+	static hs_stats st;
+	memset(&st, 0, sizeof st);
+	hs_report rep;
+	hs_shot_run_check(sim, NULL, &s, &st, &rep);
+	if (rep.mask)
+		hs_print_report(stdout, &s, &rep);
+	assert_int_equal(rep.mask, 0);
+
+	// The flight, from ball 1's launch: its crossing of the east line, its landing and pocket.
+	int ne;
+	const pool_event *ev = pool_sim_events(sim, &ne);
+	pool_ball_state launch;
+	double t_launch = -1.0, t_pocket = -1.0;
+	pool_pocket pocket = POOL_POCKET_NONE;
+	for (int e = 0; e < ne; ++e) {
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[e]);
+		const int k = find_ball(after, ev[e].ball_count, 1);
+		if (k < 0)
+			continue;
+		if (after[k].motion == POOL_MOTION_AIRBORNE && t_launch < 0.0) {
+			launch = after[k];
+			t_launch = ev[e].time;
+		}
+		if (ev[e].type == POOL_EVENT_POCKET) {
+			t_pocket = ev[e].time;
+			pocket = ev[e].pocket;
+		}
+	}
+	assert_true(t_launch >= 0.0 && launch.vel.z > 0.0 && launch.vel.x > 0.0);
+	const double L = t->length, dc = hs_dc(&s.def);
+	const double tau_cross = (L - dc - launch.pos.x) / launch.vel.x;
+	const double z_cross = launch.pos.z + launch.vel.z * tau_cross - 0.5 * p->g * tau_cross * tau_cross;
+	const double flight = 2.0 * launch.vel.z / p->g; // back on the cloth (z = R): where it lands
+	printf("flight over a mouth: launched at t = %.6g s, v_z %.6g m/s; crosses the line %.3g m above the nose; "
+	       "pocket %s at t = %.9g s (landing %.9g s)\n",
+	       t_launch, launch.vel.z, z_cross - h, pool_pocket_name(pocket), t_pocket, t_launch + flight);
+	assert_true(z_cross > h); // above the nose: not a pocket at the line
+	assert_int_equal(pocket, POOL_POCKET_NE);
+	assert_true(fabs(t_pocket - (t_launch + flight)) <= 1e-12 * flight + 1e-15);
+	// The check itself: under a real nose (1.27 R) the same flight crosses the line 0.27 R below
+	// it, where the ball falls into the pocket; the check must see it fly on.
+	pool_sim_def high = s.def;
+	high.table.cushion_height = 1.27 * R;
+	const double dc_high = hs_dc(&high);
+	pool_ball_state inside = launch;
+	inside.pos.x = L - dc_high - 1e-3; // (inside that nose's contact line, 0.96 R from the edge)
+	const double tau_high = 1e-3 / launch.vel.x;
+	assert_true(hs_mouth_crossing(&high, dc_high, &inside, 2.0 * tau_high) > 0.25 * R);
+	assert_true(hs_mouth_crossing(&high, dc_high, &inside, 0.5 * tau_high) == -INFINITY); // not across yet
+	assert_true(hs_mouth_crossing(&s.def, dc, &launch, 2.0 * tau_cross) < 0.0); // this shot's: above it
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
-	const struct CMUnitTest tests[] = {cmocka_unit_test(test_random_shots), cmocka_unit_test(test_hostile_shots)};
+	const struct CMUnitTest tests[] = {cmocka_unit_test(test_random_shots), cmocka_unit_test(test_hostile_shots),
+	                                   cmocka_unit_test(test_flight_over_a_mouth)};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
