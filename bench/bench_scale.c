@@ -199,7 +199,8 @@ int main(int argc, char **argv) {
 			       1e6 * sum.median / events, 1e6 * sum.min / events);
 		}
 		if (first == 0 && last == 1 && !status)
-			printf("%-6s %5d balls  same events bit for bit with both searches\n", family, s.n);
+			printf("%-6s %5d balls  same events bit for bit with both searches (hash %016llx)\n", family, s.n,
+			       (unsigned long long)hash[0]);
 		fflush(stdout);
 		free(t[0]);
 		free(t[1]);

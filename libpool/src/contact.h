@@ -25,6 +25,8 @@
 #ifndef POOL_CONTACT_H
 #define POOL_CONTACT_H
 
+#include <math.h>
+
 /// Normal approach speed (m/s) that counts as approaching for bodies already in contact.
 /// Every accepted collision reverses the normal relative velocity (times the restitution), so
 /// a pair cannot be found colliding again at the same instant unless it approaches faster than
@@ -53,6 +55,29 @@ double pool_contact_first_falling_root(const double *p, int deg, double T);
 /// First root in [lo, T] of the same polynomial where it falls, INFINITY when none: the search
 /// past a root that was no contact (a ghost: the contact point outside the part's span).
 double pool_contact_first_falling_root_from(const double *p, int deg, double lo, double T);
+
+/// Relative margin of pool_contact_quadratic_apart: a gap quadratic whose least value over the
+/// window exceeds this fraction of the size of its terms (|f0| + |f1| T + |f2| T^2) is positive
+/// however its evaluation rounds (a few ulps, 1e-16), and its roots lie so far outside the window
+/// that no rounding of the closed form brings one in: the root finder would report none.
+#define POOL_CONTACT_APART_REL 1e-9
+
+/// 1 when f0 + f1 t + f2 t^2 stays above zero, by POOL_CONTACT_APART_REL, over [0, T] (T finite):
+/// its least value there, at an end or at its vertex, is that far above zero. The bodies cannot
+/// meet in the window; the callers then leave out the root finder (the same answer, INFINITY).
+/// Inline: most of the cushion predictions of a segment end here.
+static inline int pool_contact_quadratic_apart(double f0, double f1, double f2, double T) {
+	if (!(T >= 0.0 && T < INFINITY))
+		return 0;
+	const double scale = fabs(f0) + (fabs(f1) + fabs(f2) * T) * T, margin = POOL_CONTACT_APART_REL * scale;
+	double least = f0 + (f1 + f2 * T) * T;
+	least = f0 < least ? f0 : least;
+	if (f2 > 0.0 && f1 < 0.0 && -f1 < 2.0 * f2 * T) { // the vertex -f1 / (2 f2) inside (0, T)
+		const double vertex = f0 - f1 * f1 / (4.0 * f2);
+		least = vertex < least ? vertex : least;
+	}
+	return least > margin;
+}
 
 /// 1 when bodies in contact (gap <= POOL_TOUCH_TOLERANCE) collide now by the rules above.
 int pool_contact_now(double gap, double speed, double accel);

@@ -11,7 +11,7 @@ static void sift_up(pool_event_queue *q, int i) {
 	const pool_event_key *key = &q->keys[slot];
 	while (i > 0) {
 		const int parent = (i - 1) / 2, above = q->heap[parent];
-		if (pool_event_key_cmp(key, &q->keys[above]) >= 0)
+		if (!pool_event_queue_before(key, &q->keys[above]))
 			break;
 		q->heap[i] = above;
 		q->pos[above] = i;
@@ -29,10 +29,10 @@ static void sift_down(pool_event_queue *q, int i) {
 		if (l >= q->count)
 			break;
 		int child = l;
-		if (r < q->count && pool_event_key_cmp(&q->keys[q->heap[r]], &q->keys[q->heap[l]]) < 0)
+		if (r < q->count && pool_event_queue_before(&q->keys[q->heap[r]], &q->keys[q->heap[l]]))
 			child = r;
 		const int below = q->heap[child];
-		if (pool_event_key_cmp(&q->keys[below], key) >= 0)
+		if (!pool_event_queue_before(&q->keys[below], key))
 			break;
 		q->heap[i] = below;
 		q->pos[below] = i;
@@ -54,8 +54,12 @@ void pool_event_queue_build(pool_event_queue *q, int count) {
 
 void pool_event_queue_update(pool_event_queue *q, int slot, const pool_event_key *key) {
 	POOL_ASSERT(slot >= 0 && slot < q->count && key->slot == slot);
-	const int earlier = pool_event_key_cmp(key, &q->keys[slot]) < 0;
+	// No event before and none now (a ball at rest predicted again): its place in the heap holds.
+	const int none = key->time == INFINITY && q->keys[slot].time == INFINITY;
+	const int earlier = pool_event_queue_before(key, &q->keys[slot]);
 	q->keys[slot] = *key;
+	if (none)
+		return;
 	if (earlier)
 		sift_up(q, q->pos[slot]);
 	else

@@ -5,6 +5,7 @@
 #ifndef POOL_EVENT_QUEUE_H
 #define POOL_EVENT_QUEUE_H
 
+#include <math.h>
 #include <stdint.h>
 
 /// Ordering key of a predicted event.
@@ -30,6 +31,16 @@ static inline int pool_event_key_cmp(const pool_event_key *a, const pool_event_k
 	if (a->slot != b->slot)
 		return a->slot < b->slot ? -1 : 1;
 	return 0;
+}
+
+/// 1 when key a goes above key b in the heap: the keys' order, except that slots with no event
+/// (time INFINITY, most of the balls at rest) stay in any order among themselves. Their order
+/// never matters: one of them on top means that nothing will happen again, whichever it is (the
+/// world stops at rest), and comparing such ties in full took a fifth of the sifts.
+static inline int pool_event_queue_before(const pool_event_key *a, const pool_event_key *b) {
+	if (a->time != b->time)
+		return a->time < b->time;
+	return a->time != INFINITY && pool_event_key_cmp(a, b) < 0;
 }
 
 /// Heap over `count` slots; the caller owns the arrays (capacity >= count each).

@@ -35,7 +35,7 @@ pool_result pool_history_reserve_balls(pool_history *h, const pool_allocator *a,
 	return POOL_OK;
 }
 
-pool_result pool_history_reserve(pool_history *h, const pool_allocator *a, int events, int states) {
+pool_result pool_history_grow(pool_history *h, const pool_allocator *a, int events, int states) {
 	if (h->n_events + events > h->cap_events) {
 		const int cap = pool_mem_next_cap(h->cap_events, h->n_events + events);
 		void **arrays[] = {(void **)&h->events};

@@ -29,9 +29,16 @@ void pool_history_free(pool_history *h, const pool_allocator *a);
 /// Room for `balls` balls (`used` of them placed); POOL_ERR_OUT_OF_MEMORY leaves h as it was.
 pool_result pool_history_reserve_balls(pool_history *h, const pool_allocator *a, int balls, int used);
 
+/// pool_history_reserve when the arrays must grow.
+pool_result pool_history_grow(pool_history *h, const pool_allocator *a, int events, int states);
+
 /// Room for `events` more events with `states` more states; POOL_ERR_OUT_OF_MEMORY leaves h as
-/// it was.
-pool_result pool_history_reserve(pool_history *h, const pool_allocator *a, int events, int states);
+/// it was. Inline: asked at every step and every ball added, the room is nearly always there.
+static inline pool_result pool_history_reserve(pool_history *h, const pool_allocator *a, int events, int states) {
+	if (h->n_events + events <= h->cap_events && h->n_states + states <= h->cap_states)
+		return POOL_OK;
+	return pool_history_grow(h, a, events, states);
+}
 
 /// Ball i's first state, at its placement at time t (room reserved).
 void pool_history_place(pool_history *h, int i, const pool_ball_state *s, double t);

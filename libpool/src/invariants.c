@@ -16,13 +16,14 @@
 
 static char detail[256];
 
-// The heap: every slot at its position, every parent's key at most its children's.
+// The heap: every slot at its position, no child's key before its parent's (slots with no event
+// in any order among themselves: pool_event_queue_before).
 static void check_heap(const pool_sim *sim) {
 	const pool_event_queue *q = &sim->queue;
 	POOL_ASSERT(q->count == sim->n);
 	for (int i = 0; i < q->count; ++i) {
 		const bool placed = q->heap[i] >= 0 && q->heap[i] < q->count && q->pos[q->heap[i]] == i;
-		const bool ordered = placed && (i == 0 || pool_event_key_cmp(&q->keys[q->heap[(i - 1) / 2]], &q->keys[q->heap[i]]) <= 0);
+		const bool ordered = placed && (i == 0 || !pool_event_queue_before(&q->keys[q->heap[i]], &q->keys[q->heap[(i - 1) / 2]]));
 		if (!ordered) {
 			snprintf(detail, sizeof detail, "heap position %d", i);
 			pool_assert_failed(placed ? "parent's key at most its child's" : "slot at its heap position", detail, __FILE__,
@@ -50,8 +51,8 @@ static void check_bodies(const pool_sim *sim) {
 		CHECK_BODY(memcmp(&sim->cur[i], &b->seg.start, sizeof sim->cur[i]) == 0);
 		CHECK_BODY(b->active == (sim->cur[i].motion != POOL_MOTION_POCKETED && sim->cur[i].motion != POOL_MOTION_OFF_TABLE));
 		// What the pair loop reads first mirrors the body (schedule.c).
-		CHECK_BODY(sim->reach[i].flags ==
-		           ((b->active ? POOL_REACH_IN_PLAY : 0) | (b->seg.model->translating ? POOL_REACH_MOVING : 0)));
+		CHECK_BODY(((sim->in_play[i >> 6] & pool_body_bit(i)) != 0) == (b->active != 0));
+		CHECK_BODY(((sim->moving[i >> 6] & pool_body_bit(i)) != 0) == (b->seg.model->translating != 0));
 		CHECK_BODY(b->partner >= -1 && b->partner < sim->n && b->partner != i);
 		CHECK_BODY(b->partner < 0 || (b->active && sim->body[b->partner].active));
 		CHECK_BODY(!(b->seg.t0 > sim->time) || sim->time == 0.0);

@@ -39,6 +39,16 @@ static double triangle_dist2(pool_vec3 a, pool_vec3 b, pool_vec3 c) {
 	return d;
 }
 
+// The least and the greatest of three numbers (no NaN here: the caller's T is finite).
+static inline double fmin3(double a, double b, double c) {
+	const double m = a < b ? a : b;
+	return m < c ? m : c;
+}
+static inline double fmax3(double a, double b, double c) {
+	const double m = a > b ? a : b;
+	return m > c ? m : c;
+}
+
 // Cheap rejection: over [0, T] the quadratic path p(tau) = dp + dv tau + da tau^2 is a Bezier
 // curve inside the triangle of its control points P0, P0 + dv T / 2, P0 + dv T + da T^2 (in 3D:
 // airborne balls too); if that triangle stays farther than 2R from the origin, the balls
@@ -53,8 +63,15 @@ static inline int may_touch(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double R, 
 	const pool_vec3 p2 = pool_v3_madd(pool_v3_madd(dp, T, dv), T * T, da);
 	const double d2 = 4.0 * R * R * (1.0 + 1e-9);
 	if (dp.z == 0.0 && p1.z == 0.0 && p2.z == 0.0) {
-		// In the plane (both balls on the cloth: the hot path): origin inside the triangle when
-		// the three edge cross products agree in sign, else the nearest edge.
+		// In the plane (both balls on the cloth: the hot path). The triangle's bounding box
+		// farther than 2R from the origin: apart, without the edges (most pairs that get here).
+		const double x_lo = fmin3(dp.x, p1.x, p2.x), x_hi = fmax3(dp.x, p1.x, p2.x);
+		const double y_lo = fmin3(dp.y, p1.y, p2.y), y_hi = fmax3(dp.y, p1.y, p2.y);
+		const double gx = x_lo > 0.0 ? x_lo : x_hi < 0.0 ? -x_hi : 0.0, gy = y_lo > 0.0 ? y_lo : y_hi < 0.0 ? -y_hi : 0.0;
+		if (gx * gx + gy * gy > d2)
+			return 0;
+		// Origin inside the triangle when the three edge cross products agree in sign, else the
+		// nearest edge.
 		const double c0 = dp.x * p1.y - dp.y * p1.x, c1 = p1.x * p2.y - p1.y * p2.x, c2 = p2.x * dp.y - p2.y * dp.x;
 		if ((c0 >= 0 && c1 >= 0 && c2 >= 0) || (c0 <= 0 && c1 <= 0 && c2 <= 0))
 			return 1;
@@ -104,40 +121,66 @@ double pool_predict_ball_ball_in_reach(pool_vec3 dp, pool_vec3 dv, pool_vec3 da,
 	return ball_ball(dp, dv, da, R, T, 1);
 }
 
-// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `line` coming from the side where
-// side (line - x) > 0 (side +1: increasing towards it); INFINITY when never.
-static double line_contact(double x0, double v, double a, double line, double side, double T) {
+// Earliest tau in [0, T] at which a gap side (line - x), now `gap` and not out of reach
+// (pool_line_reach), closes along x0 + v tau + a/2 tau^2 (side +1: x increasing towards the line);
+// INFINITY when never.
+static double gap_contact(double gap, double v, double a, double side, double T) {
 	pool_contact_gap g;
-	g.gap = side * (line - x0);
-	// Apart and out of reach over the window (the gap falls by at most (|v| + |a| T / 2) T; the
-	// margin covers that bound's rounding): no contact, without the root finder.
-	if (g.gap > POOL_TOUCH_TOLERANCE && (fabs(v) + 0.5 * fabs(a) * T) * T * (1.0 + 1e-12) < g.gap)
-		return INFINITY;
+	g.gap = gap;
 	g.speed = side * v;
 	g.accel = side * a;
 	g.f[0] = g.gap;
 	g.f[1] = -g.speed;
 	g.f[2] = -0.5 * g.accel;
+	// Apart and staying apart (the least of the gap over the window well above zero): most rails
+	// a ball does not reach before its segment ends, without the root finder either.
+	if (g.gap > POOL_TOUCH_TOLERANCE && pool_contact_quadratic_apart(g.f[0], g.f[1], g.f[2], T))
+		return INFINITY;
 	g.f[3] = g.f[4] = 0.0;
 	return pool_contact_next(&g, T);
 }
 
-double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
-                            pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket) {
-	const double dc = pool_table_contact_distance(table, R);
+// Earliest tau in [0, T] where x0 + v tau + a/2 tau^2 meets `line` coming from the side where
+// side (line - x) > 0 (side +1: increasing towards it); INFINITY when never.
+static double line_contact(double x0, double v, double a, double line, double side, double T) {
+	const double gap = side * (line - x0);
+	// Apart and out of reach over the window: no contact, without the root finder.
+	if (gap > POOL_TOUCH_TOLERANCE && pool_line_reach(v, a, T) < gap)
+		return INFINITY;
+	return gap_contact(gap, v, a, side, T);
+}
+
+// One rail of cushion_lines: its contact line and side, the centre's coordinate q0, speed v and
+// acceleration a across it, that axis' reach; *best and *best_rail become its contact if earlier.
+static inline void rail_line(double line, double side, double q0, double v, double a, double reach, double T,
+                             pool_rail rail, double *best, pool_rail *best_rail) {
+	const double gap = side * (line - q0);
+	// Apart and out of reach over the window: no contact, without the root finder.
+	if (gap > POOL_TOUCH_TOLERANCE && reach < gap)
+		return;
+	const double t = gap_contact(gap, v, a, side, T);
+	if (t < *best) {
+		*best = t;
+		*best_rail = rail;
+	}
+}
+
+// pool_predict_cushion with the contact distance dc of the table and ball radius.
+static double cushion_lines(const pool_table_def *table, double dc, const pool_ball_state *s, pool_vec3 acc, double T,
+                            pool_rail *rail, pool_pocket *pocket) {
 	double best = INFINITY;
 	pool_rail best_rail = POOL_RAIL_NONE;
-	for (int r = 0; r < 4; ++r) {
-		const pool_rail rr = (pool_rail)r;
-		const double line = pool_rail_contact_line(table, dc, rr), side = pool_rail_side(rr);
-		// South / north rails: the motion normal to them is in y.
-		const double t = pool_rail_along_x(rr) ? line_contact(s->pos.y, s->vel.y, acc.y, line, side, T)
-		                                       : line_contact(s->pos.x, s->vel.x, acc.x, line, side, T);
-		if (t < best) {
-			best = t;
-			best_rail = rr;
-		}
-	}
+	// The reach of each axis, the same for its two rails; the rails in their order (the first of
+	// two contacts at one instant wins), south and north across y.
+	const double reach_x = pool_line_reach(s->vel.x, acc.x, T), reach_y = pool_line_reach(s->vel.y, acc.y, T);
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_SOUTH), -1.0, s->pos.y, s->vel.y, acc.y, reach_y, T,
+	          POOL_RAIL_SOUTH, &best, &best_rail);
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_NORTH), 1.0, s->pos.y, s->vel.y, acc.y, reach_y, T,
+	          POOL_RAIL_NORTH, &best, &best_rail);
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_WEST), -1.0, s->pos.x, s->vel.x, acc.x, reach_x, T,
+	          POOL_RAIL_WEST, &best, &best_rail);
+	rail_line(pool_rail_contact_line(table, dc, POOL_RAIL_EAST), 1.0, s->pos.x, s->vel.x, acc.x, reach_x, T,
+	          POOL_RAIL_EAST, &best, &best_rail);
 	*rail = best_rail;
 	*pocket = POOL_POCKET_NONE;
 	if (best_rail != POOL_RAIL_NONE) {
@@ -146,6 +189,22 @@ double pool_predict_cushion(const pool_table_def *table, double R, const pool_ba
 		*pocket = pool_pocket_at(table, best_rail, along);
 	}
 	return best;
+}
+
+double pool_predict_cushion(const pool_table_def *table, double R, const pool_ball_state *s,
+                            pool_vec3 acc, double T, pool_rail *rail, pool_pocket *pocket) {
+	return cushion_lines(table, pool_table_contact_distance(table, R), s, acc, T, rail, pocket);
+}
+
+double pool_predict_cushion_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
+                                  pool_event_type *kind, pool_site *site) {
+	if (sh->table.pockets != POOL_POCKETS_MOUTH_LINES)
+		return pool_predict_cushion_jaws(sh, s, acc, T, kind, site);
+	// The thesis model's lines, with the shape's contact distance (computed once).
+	site->part = -1;
+	const double t = cushion_lines(&sh->table, sh->dc, s, acc, T, &site->rail, &site->pocket);
+	*kind = site->pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
+	return t;
 }
 
 /// m: how far past a rail's contact line a flight may land and stay on the table: as far as a

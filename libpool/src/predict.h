@@ -35,6 +35,13 @@ static inline int pool_predict_pair_out_of_reach(pool_vec3 dp, pool_vec3 dv, poo
 	return dp.x * dp.x + dp.y * dp.y + dp.z * dp.z > clear * clear;
 }
 
+/// How far a coordinate x0 + v tau + a tau^2 / 2 moves over [0, T] at most, (|v| + |a| T / 2) T,
+/// with a margin for that bound's rounding: a line farther away is out of reach. It never falls
+/// as T grows, so a line out of reach over a window is out of reach over any shorter one.
+static inline double pool_line_reach(double v, double a, double T) {
+	return (fabs(v) + 0.5 * fabs(a) * T) * T * (1.0 + 1e-12);
+}
+
 /// Earliest tau in [0, T] at which a ball on the cloth (state s, centre acceleration acc)
 /// touches a cushion nose; *rail receives the rail, and *pocket the pocket when the contact
 /// falls inside a pocket mouth (else POOL_POCKET_NONE). INFINITY when none.

@@ -107,6 +107,8 @@ static double cloth_part(const pool_table_shape *sh, int k, const path *q, doubl
 		if (s0 - sh->dc > POOL_TOUCH_TOLERANCE && (fabs(s1) + fabs(s2) * T) * T * (1.0 + 1e-12) < s0 - sh->dc)
 			return INFINITY;
 		const pool_contact_gap g = line_gap(s0, s1, s2, sh->dc);
+		if (g.gap > POOL_TOUCH_TOLERANCE && pool_contact_quadratic_apart(g.f[0], g.f[1], g.f[2], T))
+			return INFINITY; // clear of the line over the window
 		return part_contact(np, &g, q, T);
 	}
 	const pool_contact_gap g = sphere_gap(&w, np->length + sh->dc);
@@ -149,15 +151,24 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 	// The rails' contact lines: a crossing within a nose segment's span is a contact with it;
 	// elsewhere the ball enters a pocket's mouth, whose parts are searched below. Every part of
 	// a pocket lies beyond the contact lines, so a ball reaches none without crossing one first
-	// in that pocket's mouth, or starting there.
+	// in that pocket's mouth, or starting there. A line out of reach over the whole segment is out
+	// of reach over the window: each axis' reach over T, taken once, leaves most rails out at once.
+	const double reach_x = pool_line_reach(s->vel.x, acc.x, T), reach_y = pool_line_reach(s->vel.y, acc.y, T);
 	for (int r = 0; r < 4; ++r) {
 		const pool_rail rail = (pool_rail)r;
 		const int along_x = pool_rail_along_x(rail);
 		const double side = pool_rail_side(rail), line = pool_rail_contact_line(&sh->table, sh->dc, rail);
 		const double q0 = along_x ? s->pos.y : s->pos.x, vq = along_x ? s->vel.y : s->vel.x, aq = along_x ? acc.y : acc.x;
+		const double gap = side * (line - q0);
+		if (gap > POOL_TOUCH_TOLERANCE && (along_x ? reach_y : reach_x) < gap)
+			continue;
 		const pool_contact_gap g = line_gap(side * (line - q0), -side * vq, -0.5 * side * aq, 0.0);
 		const double window = fmin(T, best);
 		if (g.gap > POOL_TOUCH_TOLERANCE && (fabs(g.f[1]) + fabs(g.f[2]) * window) * window * (1.0 + 1e-12) < g.gap)
+			continue;
+		// Nor a line the ball stays well clear of over the window (its least gap there): no
+		// crossing, in a mouth or not.
+		if (g.gap > POOL_TOUCH_TOLERANCE && pool_contact_quadratic_apart(g.f[0], g.f[1], g.f[2], window))
 			continue;
 		pool_pocket pocket = POOL_POCKET_NONE;
 		// Beyond the line: in a pocket's mouth (or, within a nose's span, inside its cushion).
@@ -498,16 +509,6 @@ double pool_predict_flight_jaws(const pool_table_shape *sh, const pool_ball_stat
 		}
 	}
 	return best;
-}
-
-double pool_predict_cushion_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,
-                                  pool_event_type *kind, pool_site *site) {
-	if (sh->table.pockets != POOL_POCKETS_MOUTH_LINES)
-		return pool_predict_cushion_jaws(sh, s, acc, T, kind, site);
-	site->part = -1;
-	const double t = pool_predict_cushion(&sh->table, sh->R, s, acc, T, &site->rail, &site->pocket);
-	*kind = site->pocket != POOL_POCKET_NONE ? POOL_EVENT_POCKET : POOL_EVENT_BALL_CUSHION;
-	return t;
 }
 
 double pool_predict_flight_shape(const pool_table_shape *sh, const pool_ball_state *s, pool_vec3 acc, double T,

@@ -149,7 +149,9 @@ static void reach_box(pool_sim *sim, int i) {
 	const pool_segment *seg = &b->seg;
 	const pool_ball_state *s = &seg->start;
 	pool_reach *r = &sim->reach[i];
-	r->flags = (b->active ? POOL_REACH_IN_PLAY : 0) | (seg->model->translating ? POOL_REACH_MOVING : 0);
+	const uint64_t bit = pool_body_bit(i);
+	sim->in_play[i >> 6] = b->active ? sim->in_play[i >> 6] | bit : sim->in_play[i >> 6] & ~bit;
+	sim->moving[i >> 6] = seg->model->translating ? sim->moving[i >> 6] | bit : sim->moving[i >> 6] & ~bit;
 	const double widen = sim->def.params.ball_radius + POOL_BROADPHASE_MARGIN;
 	// The window's end as the pair loop takes it (max_time were own_time NaN), and the path's.
 	const double end = b->own_time < sim->def.max_time ? b->own_time : sim->def.max_time;
@@ -181,83 +183,111 @@ static inline int reach_apart(const double *a, const double *b) {
 
 void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s, double t) {
 	begin_own(sim, i, s, t);
+	// Before the shot's first prediction (balls being added, the strike) no search reads the reach,
+	// and the first prediction files every body's (pool_schedule_predict_all).
+	if (!sim->predicted)
+		return;
 	reach_box(sim, i);
 	// The broadphase files the segment's reach up to its own next event: no pair search looks
 	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
-	// Before the shot's first prediction (balls being added) there is nothing to file it in yet.
 	const pool_body *b = &sim->body[i];
-	if (sim->broad.on && sim->predicted)
+	if (sim->broad.on)
 		pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, t, fmin(b->own_time, sim->def.max_time));
 }
 
 // The earlier of two event times (never NaN): fmin is a library call, here in the hottest loop.
 static inline double earlier(double a, double b) { return b < a ? b : a; }
 
-// The next body to look at after j in a contact search (-1: none): every body in index order,
-// or the broadphase's candidates, also in index order.
-static inline int next_body(pool_sim *sim, int grid, int j) {
-	if (grid)
-		return pool_broadphase_next_near(&sim->broad, j);
-	return j + 1 < sim->n ? j + 1 : -1;
+// What a contact search of body i knows before it looks at other bodies (earliest_contact).
+typedef struct search {
+	pool_sim *sim;
+	int i;
+	double now;
+	pool_vec3 pi, vi, ai;  // body i's path as a polynomial in (t - now)
+	double horizon_i;      // its own next event, or max_time
+	int cluster_i;         // its LINK cluster (-1: none)
+	const double *box_i;   // its reach box
+	int boxes;             // leave out bodies whose reach boxes are apart from body i's
+	pool_event_key *best;  // the earliest event so far
+	int partner;           // the other body of *best (-1: none)
+} search;
+
+// Body j, a ball in play (moving when body i is not), against body i: *best becomes their
+// contact if it comes first.
+static inline void try_pair(search *q, int j) {
+	pool_sim *sim = q->sim;
+	const int i = q->i;
+	if (q->boxes && reach_apart(q->box_i, sim->reach[j].box))
+		return;
+	const pool_body *bj = &sim->body[j];
+	// Contacts inside a cluster are its LCP's (link.c), not events.
+	if (q->cluster_i >= 0 && q->cluster_i == pool_link_cluster_of(&sim->link, j))
+		return;
+	// A contact after the best event so far cannot be the earliest: shrink the window.
+	const double now = q->now;
+	const double T = earlier(earlier(q->horizon_i, bj->own_time), q->best->time) - now;
+	if (!(T >= 0.0))
+		return;
+	pool_vec3 pj, vj;
+	pool_segment_path(&bj->seg, now - bj->seg.t0, &pj, &vj);
+	// Same operand order whichever body predicts, so both get the same time.
+	pool_vec3 dp = pool_v3_sub(q->pi, pj), dv = pool_v3_sub(q->vi, vj), da = pool_v3_scale(pool_v3_sub(q->ai, bj->seg.acc), 0.5);
+	if (j < i) {
+		dp = pool_v3_scale(dp, -1.0);
+		dv = pool_v3_scale(dv, -1.0);
+		da = pool_v3_scale(da, -1.0);
+	}
+	const double R = sim->def.params.ball_radius;
+	if (pool_predict_pair_out_of_reach(dp, dv, da, R, T))
+		return;
+	const double tau = pool_predict_ball_ball_in_reach(dp, dv, da, R, T);
+	if (!(tau <= T))
+		return;
+	const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
+	const pool_event_key k = {now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
+	if (pool_event_key_cmp(&k, q->best) < 0) {
+		*q->best = k;
+		q->partner = j;
+		POOL_ASSERT(bj->active && j != i); // a partner is a ball in play, another one
+	}
 }
 
 // Body i's earliest contact at `now` with another body, if it comes before *best (its own
 // event): *best becomes it, and the other body is returned (-1: none). grid: only the
-// broadphase's candidates, in index order; else every body. boxes: bodies whose reach boxes are
-// apart are left out at once. The same pairs in the same order either way: the broadphase and
-// the boxes only leave out bodies that cannot come within reach over the window (broadphase.h,
-// reach_box).
+// broadphase's candidates, in index order; else every body in play (moving ones when body i
+// does not move), taken a word of the bit sets at a time, in index order. boxes: bodies whose
+// reach boxes are apart are left out at once. The same pairs in the same order either way: the
+// broadphase and the boxes only leave out bodies that cannot come within reach over the window
+// (broadphase.h, reach_box).
 static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, int boxes, pool_event_key *best) {
-	const pool_params *p = &sim->def.params;
 	const pool_body *bi = &sim->body[i];
-	int partner = -1;
+	search q = {.sim = sim, .i = i, .now = now, .boxes = boxes, .best = best, .partner = -1};
 	// Both paths as polynomials in (t - now), from the segments' own polynomial.
-	pool_vec3 pi, vi;
-	pool_segment_path(&bi->seg, now - bi->seg.t0, &pi, &vi);
-	const pool_vec3 ai = bi->seg.acc;
+	pool_segment_path(&bi->seg, now - bi->seg.t0, &q.pi, &q.vi);
+	q.ai = bi->seg.acc;
 	const int mi = bi->seg.model->translating;
-	const double horizon_i = earlier(sim->def.max_time, bi->own_time); // as fmin, were own_time NaN
-	const int cluster_i = pool_link_cluster_of(&sim->link, i);
-	// A body in play; when body i does not move, one that does.
-	const int need = mi ? POOL_REACH_IN_PLAY : POOL_REACH_IN_PLAY | POOL_REACH_MOVING;
-	const double *box_i = sim->reach[i].box;
-	if (grid)
-		pool_broadphase_query(&sim->broad, i, &bi->seg, now, horizon_i);
-	for (int j = next_body(sim, grid, -1); j >= 0; j = next_body(sim, grid, j)) {
-		const pool_reach *rj = &sim->reach[j];
-		if (j == i || (rj->flags & need) != need || (boxes && reach_apart(box_i, rj->box)))
-			continue;
-		const pool_body *bj = &sim->body[j];
-		// Contacts inside a cluster are its LCP's (link.c), not events.
-		if (cluster_i >= 0 && cluster_i == pool_link_cluster_of(&sim->link, j))
-			continue;
-		// A contact after the best event so far cannot be the earliest: shrink the window.
-		const double T = earlier(earlier(horizon_i, bj->own_time), best->time) - now;
-		if (!(T >= 0.0))
-			continue;
-		pool_vec3 pj, vj;
-		pool_segment_path(&bj->seg, now - bj->seg.t0, &pj, &vj);
-		// Same operand order whichever body predicts, so both get the same time.
-		pool_vec3 dp = pool_v3_sub(pi, pj), dv = pool_v3_sub(vi, vj), da = pool_v3_scale(pool_v3_sub(ai, bj->seg.acc), 0.5);
-		if (j < i) {
-			dp = pool_v3_scale(dp, -1.0);
-			dv = pool_v3_scale(dv, -1.0);
-			da = pool_v3_scale(da, -1.0);
-		}
-		if (pool_predict_pair_out_of_reach(dp, dv, da, p->ball_radius, T))
-			continue;
-		const double tau = pool_predict_ball_ball_in_reach(dp, dv, da, p->ball_radius, T);
-		if (!(tau <= T))
-			continue;
-		const int32_t a = sim->cur[i].id, b = sim->cur[j].id;
-		const pool_event_key k = {now + tau, POOL_EVENT_BALL_BALL, a < b ? a : b, a < b ? b : a, i};
-		if (pool_event_key_cmp(&k, best) < 0) {
-			*best = k;
-			partner = j;
-			POOL_ASSERT(bj->active && j != i); // a partner is a ball in play, another one
-		}
+	q.horizon_i = earlier(sim->def.max_time, bi->own_time); // as fmin, were own_time NaN
+	q.cluster_i = pool_link_cluster_of(&sim->link, i);
+	q.box_i = sim->reach[i].box;
+	if (grid) {
+		pool_broadphase_query(&sim->broad, i, &bi->seg, now, q.horizon_i);
+		for (int j = pool_broadphase_next_near(&sim->broad, -1); j >= 0; j = pool_broadphase_next_near(&sim->broad, j))
+			if ((sim->in_play[j >> 6] & pool_body_bit(j)) && (mi || (sim->moving[j >> 6] & pool_body_bit(j))))
+				try_pair(&q, j);
+		return q.partner;
 	}
-	return partner;
+	const int n = sim->n, words = (n + 63) >> 6;
+	for (int w = 0; w < words; ++w) {
+		// A body in play other than i; when body i does not move, one that does.
+		uint64_t m = sim->in_play[w] & (mi ? ~(uint64_t)0 : sim->moving[w]);
+		if (w == words - 1 && (n & 63))
+			m &= pool_body_bit(n) - 1; // bits past the last body are stale
+		if (w == i >> 6)
+			m &= ~pool_body_bit(i);
+		for (; m; m &= m - 1)
+			try_pair(&q, 64 * w + __builtin_ctzll(m));
+	}
+	return q.partner;
 }
 
 // Recomputes body i's slot at time `now`: its own event or its earliest contact with another.

@@ -45,7 +45,18 @@ void pool_segment_begin(pool_segment *seg, const pool_params *p, const pool_ball
 
 /// Duration until the segment's own next state change (slide_roll, roll_stop or spin_stop,
 /// whichever comes first, ties in that order) and its kind; INFINITY and no kind when none.
-double pool_segment_next_change(const pool_segment *seg, pool_event_type *kind);
+/// Inline: every segment start asks it.
+static inline double pool_segment_next_change(const pool_segment *seg, pool_event_type *kind) {
+	double best = seg->move_end;
+	pool_event_type k = seg->move_kind;
+	if (seg->spin_end < best) {
+		best = seg->spin_end;
+		k = POOL_EVENT_SPIN_STOP;
+	}
+	if (kind)
+		*kind = k;
+	return best;
+}
 
 /// Centre position and velocity tau >= 0 after the start: the segment's one polynomial (tau is
 /// clamped at the translation's own end, where the motion stops changing that way). Inline: the

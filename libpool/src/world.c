@@ -199,7 +199,7 @@ void pool_sim_destroy(pool_sim *sim) {
 	if (!sim)
 		return;
 	const pool_allocator a = sim->alloc;
-	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work, sim->reach};
+	void *arrays[] = {sim->cur, sim->body, sim->keys, sim->heap, sim->hpos, sim->work, sim->reach, sim->in_play, sim->moving};
 	pool_link_free(&sim->link);
 	pool_history_free(&sim->history, &a);
 	pool_broadphase_free(&sim->broad, &a);
@@ -224,11 +224,14 @@ pool_result pool_sim_reset(pool_sim *sim, const pool_sim_def *def, pool_error *e
 static pool_result reserve_balls(pool_sim *sim, int need) {
 	if (need > sim->cap_balls) {
 		const int cap = pool_mem_next_cap(sim->cap_balls, need);
-		void **arrays[] = {(void **)&sim->cur,  (void **)&sim->body, (void **)&sim->keys, (void **)&sim->heap,
-		                   (void **)&sim->hpos, (void **)&sim->work, (void **)&sim->reach};
+		// The bit sets get a word per ball, more than they need, so that one call grows every array.
+		void **arrays[] = {(void **)&sim->cur,  (void **)&sim->body, (void **)&sim->keys,  (void **)&sim->heap,
+		                   (void **)&sim->hpos, (void **)&sim->work, (void **)&sim->reach, (void **)&sim->in_play,
+		                   (void **)&sim->moving};
 		const size_t elems[] = {sizeof(pool_ball_state), sizeof(pool_body), sizeof(pool_event_key), sizeof(int),
-		                        sizeof(int),             sizeof(int),       sizeof(pool_reach)};
-		if (pool_mem_grow(&sim->alloc, arrays, elems, 7, sim->n, cap))
+		                        sizeof(int),             sizeof(int),       sizeof(pool_reach),     sizeof(uint64_t),
+		                        sizeof(uint64_t)};
+		if (pool_mem_grow(&sim->alloc, arrays, elems, 9, sim->n, cap))
 			return POOL_ERR_OUT_OF_MEMORY;
 		sim->cap_balls = cap;
 	}
@@ -269,11 +272,28 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 		return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
 		                      "balls[%d].omega: spin surface speed |omega| R above the %g m/s limit (POOL_MAX_SPEED)", idx,
 		                      POOL_MAX_SPEED);
-	int dup = find_ball(sim, ball->id);
-	if (dup >= 0)
+	// One pass over the balls placed: a duplicate id, reported now, and the first ball this one
+	// overlaps, reported after the table's checks. Most balls are at least 2R apart, which their
+	// squared distance tells without a square root (sqrt is monotone, and 2R is far above
+	// 2R - tol): the same answer for every pair.
+	const double tol = POOL_TOUCH_TOLERANCE, apart2 = 4.0 * R * R;
+	int dup = 0, overlap = -1;
+	double overlap_d = 0.0;
+	for (int j = 0; j < sim->n; ++j) {
+		dup |= sim->cur[j].id == ball->id;
+		const pool_vec3 dp = pool_v3_sub(ball->pos, sim->cur[j].pos);
+		const double dd = pool_v3_dot(dp, dp);
+		if (dd >= apart2 || overlap >= 0)
+			continue;
+		const double d = sqrt(dd);
+		if (d < 2.0 * R - tol) {
+			overlap = j;
+			overlap_d = d;
+		}
+	}
+	if (dup)
 		return pool_error_set(error, POOL_ERR_DUPLICATE_ID, "balls[%d].id: duplicate id %d", idx, (int)ball->id);
 	const double L = sim->def.table.length, W = sim->def.table.width;
-	const double tol = POOL_TOUCH_TOLERANCE;
 	if (pool_world_planar(sim)) {
 		if (fabs(ball->pos.z - R) > tol)
 			return pool_error_set(error, POOL_ERR_INVALID_ARGUMENT,
@@ -302,19 +322,9 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: inside the %s cushion's nose by %.3g m", idx,
 			                      pool_rail_name(nose_rail), -nose_gap);
 	}
-	// Most balls are at least 2R apart, which their squared distance tells without a square root
-	// (sqrt is monotone, and 2R is far above 2R - tol): the same answer for every pair.
-	const double apart2 = 4.0 * R * R;
-	for (int j = 0; j < sim->n; ++j) {
-		const pool_vec3 dp = pool_v3_sub(ball->pos, sim->cur[j].pos);
-		const double dd = pool_v3_dot(dp, dp);
-		if (dd >= apart2)
-			continue;
-		const double d = sqrt(dd);
-		if (d < 2.0 * R - tol)
-			return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
-			                      (int)sim->cur[j].id, 2.0 * R - d);
-	}
+	if (overlap >= 0)
+		return pool_error_set(error, POOL_ERR_OVERLAP, "balls[%d].pos: overlaps ball %d by %.3g m", idx,
+		                      (int)sim->cur[overlap].id, 2.0 * R - overlap_d);
 	if (reserve_balls(sim, idx + 1) || pool_history_reserve(&sim->history, &sim->alloc, 0, 1))
 		return pool_error_set(error, POOL_ERR_OUT_OF_MEMORY, "balls[%d]: out of memory", idx);
 	pool_ball_state s = *ball;
@@ -323,10 +333,10 @@ pool_result pool_sim_add_ball(pool_sim *sim, const pool_ball_state *ball, pool_e
 	s.motion = POOL_MOTION_STATIONARY;
 	pool_motion_after_impulse(&sim->def, &s);
 	sim->n++;
+	// The segment and its own event are begin_own's (pool_schedule_begin_segment), whole.
 	pool_body *b = &sim->body[idx];
-	memset(b, 0, sizeof *b);
-	b->active = 1;
 	b->partner = -1;
+	b->changed = 0;
 	pool_link_add_ball(&sim->link, idx);
 	pool_schedule_begin_segment(sim, idx, &s, sim->time);
 	pool_history_place(&sim->history, idx, &s, sim->time);
@@ -429,13 +439,19 @@ static pool_result process(pool_sim *sim, int slot) {
 	}
 	// A ball LINK holds: its cluster's step ends here, at the length it lasted, and the event
 	// acts on the states the step left (a cluster's balls are the solver's, not the world's).
-	const pool_result cut = pool_link_cut(&sim->link, inv, count, now);
+	int held = 0; // one of the balls is LINK's (most events: none)
+	for (int k = 0; k < count; ++k)
+		held |= pool_link_cluster_of(&sim->link, inv[k]) >= 0;
+	const pool_result cut = held ? pool_link_cut(&sim->link, inv, count, now) : POOL_OK;
 	if (cut || pool_link_starved(&sim->link))
 		return cut;
+	// A contact's states before its handler: the no-impulse test reads them (below).
+	const int contact = type == POOL_EVENT_BALL_BALL || type == POOL_EVENT_BALL_CUSHION;
 	pool_ball_state s[2], before[2];
 	for (int k = 0; k < count; ++k) {
 		pool_world_state_now(sim, inv[k], now, &s[k]);
-		before[k] = s[k];
+		if (contact)
+			before[k] = s[k];
 	}
 	const pool_event_handler handle = pool_event_handler_for(type);
 	// Impulses act on touching balls only: a pair whose predicted meeting rounded to an instant
@@ -443,14 +459,16 @@ static pool_result process(pool_sim *sim, int slot) {
 	const int apart = type == POOL_EVENT_BALL_BALL &&
 	                  pool_v3_len(pool_v3_sub(s[0].pos, s[1].pos)) - 2.0 * sim->def.params.ball_radius > POOL_TOUCH_TOLERANCE;
 	const int flags = handle && !apart ? handle(&ctx, type, s, count) : 0;
-	pool_link_keep_linked(&sim->link, inv, s, count); // (a handler derives a motion state from velocities)
+	if (held)
+		pool_link_keep_linked(&sim->link, inv, s, count); // (a handler derives a motion state from velocities)
 	// A graze: the prediction found the pair touching while approaching by a rounding-level
 	// speed, and at the event they are already parting, so Petit's law gave no impulse and the
 	// states are unchanged. That is no collision: nothing is recorded (a player's "first ball
 	// hit" must not be a ball that was never touched) and the pair is predicted again from here,
 	// where the contact rule sees it parting. A run of such no-ops at one instant (never seen)
 	// would be recorded after NOOP_LIMIT, so the shot still makes progress to max_events.
-	const int unchanged = flags == 0 && no_impulse(sim, inv, s, before, count);
+	// Only a contact's graze or pressed pair reads it (a state change, a pocket, a landing never).
+	const int unchanged = contact && flags == 0 && no_impulse(sim, inv, s, before, count);
 	// Pressed together, not parting: a resting contact that impulses cannot hold (the cloth
 	// drives the pair, or the ball into the rail, and Petit's law has nothing to act on). It is
 	// persistent contact by definition: LINK takes it at once (no event of its own is recorded).
@@ -483,7 +501,8 @@ static pool_result process(pool_sim *sim, int slot) {
 	sim->time = now;
 	sim->processed = now;
 	pool_schedule_after_event(sim, inv, count, now);
-	return pool_link_after_event(&sim->link, type, ctx.rail, inv, s, count, now);
+	// LINK looks at contacts (its trigger, a ball joining a cluster) and at the balls it holds.
+	return contact || held ? pool_link_after_event(&sim->link, type, ctx.rail, inv, s, count, now) : POOL_OK;
 }
 
 // Says in sim->last_error what made the step at `now` fail with r.

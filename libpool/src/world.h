@@ -14,6 +14,8 @@
 #ifndef POOL_WORLD_H
 #define POOL_WORLD_H
 
+#include <stdint.h>
+
 #include "broadphase.h"
 #include "event_queue.h"
 #include "history.h"
@@ -35,11 +37,6 @@ typedef struct pool_body {
 	int changed;              ///< scratch of pool_schedule_after_event: among the changed bodies
 } pool_body;
 
-/// pool_reach.flags: the body is in play (pool_body.active).
-#define POOL_REACH_IN_PLAY 1
-/// pool_reach.flags: its segment translates (the segment model's `translating`).
-#define POOL_REACH_MOVING 2
-
 /// What a contact search reads of every other body before anything else (schedule.c), kept
 /// apart from pool_body so that a search over every body reads a few cache lines.
 typedef struct pool_reach {
@@ -47,8 +44,10 @@ typedef struct pool_reach {
 	/// to its own next event (or max_time), widened by R + POOL_BROADPHASE_MARGIN: two balls whose
 	/// boxes do not overlap cannot meet before either's own event
 	double box[4];
-	int flags; ///< POOL_REACH_IN_PLAY, POOL_REACH_MOVING
 } pool_reach;
+
+/// Bit of body i in a set of bodies kept as words of 64 bits (pool_sim's in_play and moving).
+static inline uint64_t pool_body_bit(int i) { return (uint64_t)1 << (i & 63); }
 
 struct pool_sim {
 	pool_sim_def def;
@@ -60,6 +59,10 @@ struct pool_sim {
 	pool_ball_state *cur; // segment start states (pool_sim_balls)
 	pool_body *body;
 	pool_reach *reach;    // by body, as the schedule keeps them
+	// The bodies in play (pool_body.active) and those whose segment translates (the segment model's
+	// `translating`), body i in bit i % 64 of word i / 64, as the schedule files the reach boxes:
+	// a search over every body takes those it must look at a word at a time (schedule.c).
+	uint64_t *in_play, *moving;
 	pool_event_key *keys;
 	int *heap, *hpos, *work;
 	pool_event_queue queue;

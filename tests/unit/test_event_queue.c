@@ -37,7 +37,8 @@ static void test_order(void **state) {
 	assert_int_equal(pool_event_key_cmp(&a, &b), -1);
 }
 
-// The top is always the minimum over all slots, with many ties.
+// The top is always the minimum over all slots, with many ties; slots with no event (time
+// INFINITY) are on top only when every slot has none, in any order among themselves.
 static void test_heap(void **state) {
 	(void)state;
 	enum { N = 40 };
@@ -50,13 +51,27 @@ static void test_heap(void **state) {
 	for (int step = 0; step < 20000; ++step) {
 		int top = pool_event_queue_top(&q);
 		for (int i = 0; i < N; ++i)
-			assert_true(pool_event_key_cmp(&keys[top], &keys[i]) <= 0);
+			assert_true(keys[top].time == INFINITY ? keys[i].time == INFINITY : pool_event_key_cmp(&keys[top], &keys[i]) <= 0);
 		int slot = (int)(next() % N);
 		pool_event_key k = {next() % 7 == 0 ? INFINITY : (double)(next() % 5), (int)(next() % 3),
 		                    (int32_t)(next() % 4), (int32_t)(next() % 4), slot};
 		pool_event_queue_update(&q, slot, &k);
 		for (int i = 0; i < N; ++i)
 			assert_int_equal(heap[pos[i]], i);
+	}
+	// Every slot's event goes, one at a time: the top has one while any slot does; then an event
+	// in any slot comes to the top.
+	for (int i = 0; i < N; ++i) {
+		const pool_event_key k = {INFINITY, (int)(next() % 3), (int32_t)(next() % 4), (int32_t)(next() % 4), i};
+		pool_event_queue_update(&q, i, &k);
+		assert_true((keys[pool_event_queue_top(&q)].time == INFINITY) == (i == N - 1));
+	}
+	for (int i = 0; i < N; ++i) {
+		const pool_event_key k = {(double)i, 0, 0, 0, i};
+		pool_event_queue_update(&q, i, &k);
+		assert_int_equal(pool_event_queue_top(&q), 0);
+		for (int j = 0; j < N; ++j)
+			assert_int_equal(heap[pos[j]], j);
 	}
 }
 
