@@ -104,7 +104,7 @@ static double cloth_part(const pool_table_shape *sh, int k, const path *q, doubl
 		const double s0 = w.p.x * np->nx + w.p.y * np->ny, s1 = w.v.x * np->nx + w.v.y * np->ny;
 		const double s2 = w.a.x * np->nx + w.a.y * np->ny;
 		// Apart by more than the path can close over the window: no contact, no root finder.
-		if (s0 - sh->dc > POOL_TOUCH_TOLERANCE && (fabs(s1) + fabs(s2) * T) * T * (1.0 + 1e-12) < s0 - sh->dc)
+		if (s0 - sh->dc > POOL_TOUCH_TOLERANCE && pool_line_reach(s1, 2.0 * s2, T) < s0 - sh->dc)
 			return INFINITY;
 		const pool_contact_gap g = line_gap(s0, s1, s2, sh->dc);
 		if (g.gap > POOL_TOUCH_TOLERANCE && pool_contact_quadratic_apart(g.f[0], g.f[1], g.f[2], T))
@@ -162,9 +162,9 @@ double pool_predict_cushion_jaws(const pool_table_shape *sh, const pool_ball_sta
 		const double gap = side * (line - q0);
 		if (gap > POOL_TOUCH_TOLERANCE && (along_x ? reach_y : reach_x) < gap)
 			continue;
-		const pool_contact_gap g = line_gap(side * (line - q0), -side * vq, -0.5 * side * aq, 0.0);
+		const pool_contact_gap g = line_gap(gap, -side * vq, -0.5 * side * aq, 0.0);
 		const double window = fmin(T, best);
-		if (g.gap > POOL_TOUCH_TOLERANCE && (fabs(g.f[1]) + fabs(g.f[2]) * window) * window * (1.0 + 1e-12) < g.gap)
+		if (gap > POOL_TOUCH_TOLERANCE && pool_line_reach(vq, aq, window) < gap)
 			continue;
 		// Nor a line the ball stays well clear of over the window (its least gap there): no
 		// crossing, in a mouth or not.
