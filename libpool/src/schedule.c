@@ -195,9 +195,6 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 		pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, t, fmin(b->own_time, sim->def.max_time));
 }
 
-// The earlier of two event times (never NaN): fmin is a library call, here in the hottest loop.
-static inline double earlier(double a, double b) { return b < a ? b : a; }
-
 // What a contact search of body i knows before it looks at other bodies (earliest_contact).
 typedef struct search {
 	pool_sim *sim;
@@ -225,7 +222,7 @@ static inline void try_pair(search *q, int j) {
 		return;
 	// A contact after the best event so far cannot be the earliest: shrink the window.
 	const double now = q->now;
-	const double T = earlier(earlier(q->horizon_i, bj->own_time), q->best->time) - now;
+	const double T = pool_earlier(pool_earlier(q->horizon_i, bj->own_time), q->best->time) - now;
 	if (!(T >= 0.0))
 		return;
 	pool_vec3 pj, vj;
@@ -266,7 +263,7 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, i
 	pool_segment_path(&bi->seg, now - bi->seg.t0, &q.pi, &q.vi);
 	q.ai = bi->seg.acc;
 	const int mi = bi->seg.model->translating;
-	q.horizon_i = earlier(sim->def.max_time, bi->own_time); // as fmin, were own_time NaN
+	q.horizon_i = pool_earlier(sim->def.max_time, bi->own_time); // as fmin, were own_time NaN
 	q.cluster_i = pool_link_cluster_of(&sim->link, i);
 	q.box_i = sim->reach[i].box;
 	if (grid) {

@@ -114,10 +114,6 @@ void pool_segment_begin(pool_segment *seg, const pool_params *p, const pool_ball
 	seg->spin_end = m->on_cloth && s->omega.z != 0.0 ? stop_time(fabs(s->omega.z), spin_rate(p)) : INFINITY;
 }
 
-// fmin(tau, end) for tau > 0 (never NaN), as fmin gives it, a NaN end included, without its call:
-// every event evaluates states.
-static inline double until(double tau, double end) { return end < tau ? end : tau; }
-
 void pool_segment_state(const pool_segment *seg, const pool_params *p, double tau, pool_ball_state *out) {
 	const pool_ball_state *s0 = &seg->start;
 	*out = *s0;
@@ -126,7 +122,7 @@ void pool_segment_state(const pool_segment *seg, const pool_params *p, double ta
 	pool_segment_path(seg, tau, &out->pos, &out->vel);
 	// The model sets the spin perpendicular to z and keeps the start's z-spin, which on the
 	// cloth decays linearly until spin_end.
-	seg->model->spin(p, s0, until(tau, seg->move_end), out->vel, &out->omega);
+	seg->model->spin(p, s0, pool_earlier(tau, seg->move_end), out->vel, &out->omega);
 	if (seg->model->on_cloth && s0->omega.z != 0.0)
-		out->omega.z = s0->omega.z - copysign(spin_rate(p) * until(tau, seg->spin_end), s0->omega.z);
+		out->omega.z = s0->omega.z - copysign(spin_rate(p) * pool_earlier(tau, seg->spin_end), s0->omega.z);
 }

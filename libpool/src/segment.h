@@ -43,6 +43,10 @@ typedef struct pool_segment {
 /// Starts a segment in state s at absolute time t0.
 void pool_segment_begin(pool_segment *seg, const pool_params *p, const pool_ball_state *s, double t0);
 
+/// The earlier of two times as fmin gives it (a NaN b gives a), without fmin's library call: the
+/// schedule's pair loop and every state evaluation take it.
+static inline double pool_earlier(double a, double b) { return b < a ? b : a; }
+
 /// Duration until the segment's own next state change (slide_roll, roll_stop or spin_stop,
 /// whichever comes first, ties in that order) and its kind; INFINITY and no kind when none.
 /// Inline: every segment start asks it.
