@@ -363,6 +363,15 @@ static void slip_rates(const impact *im, const double *y, double nose[2], double
 	cloth_slip(dy, cloth);
 }
 
+// Ends start_direction: the contact's direction is d's (held in dir), the directions no longer
+// frozen.
+static void take_start_direction(impact *im, const double d[2], double dir[2]) {
+	im->frozen = 0u;
+	dir[0] = dir[1] = 0.0;
+	unit_or_keep(d, dir);
+	if (!(dot2(dir, dir) > 0.0))
+		dir[0] = 1.0; // nothing moves the slip: any direction (it is not used before it grows)
+}
 
 // The direction a contact starts to slide in from zero slip: d with slip' (d) = lambda d,
 // lambda > 0. Its slip's rate is affine in its own friction, rate(d) = a + B d (a: with no friction
@@ -379,10 +388,7 @@ static void start_direction(impact *im, const double *y, int i) {
 	slip_rates(im, y, rate[NOSE], rate[CLOTH]);
 	a[0] = rate[i][0], a[1] = rate[i][1];
 	if (i == CLOTH && !im->m.nose_stuck && !im->m.airborne) { // B isotropic: d is a's direction
-		im->frozen = 0u;
-		unit_or_keep(a, dir);
-		if (!(dot2(dir, dir) > 0.0))
-			dir[0] = 1.0;
+		take_start_direction(im, a, dir);
 		return;
 	}
 	for (int j = 0; j < 2; ++j) {
@@ -422,11 +428,7 @@ static void start_direction(impact *im, const double *y, int i) {
 			break;
 		lambda = next;
 	}
-	im->frozen = 0u;
-	dir[0] = dir[1] = 0.0;
-	unit_or_keep(d, dir);
-	if (!(dot2(dir, dir) > 0.0))
-		dir[0] = 1.0; // nothing moves the slip: any direction (it is not used before it grows)
+	take_start_direction(im, d, dir);
 }
 
 // Sets the directions of the contacts sliding from zero slip (from_zero[i]); true when each
