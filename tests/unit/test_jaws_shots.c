@@ -236,6 +236,16 @@ static void soak_jaws_table(pool_table_def *t, double length, double width, doub
 	t->side_hole_radius = 0.07619999999999999;
 }
 
+// A soak flight shot's definition: the defaults on its jaws table, airborne, with the soak's limits.
+static pool_sim_def soak_flight_def(double length, double width, double nose) {
+	pool_sim_def def = pool_default_sim_def();
+	soak_jaws_table(&def.table, length, width, nose);
+	def.airborne = true;
+	def.max_time = 60;
+	def.max_events = 20000;
+	return def;
+}
+
 // A ball linked (LINK) against a facing slides into the hole during a step: the hole's edge
 // must be its event even though the part it touches is "contacted" at once (a part contact is
 // the step's LCP's, no event; taken as the earliest prediction it hid the hole, and the ball
@@ -297,12 +307,8 @@ static void test_linked_into_hole(void **state) {
 // samples every 0.2 ns around it the ball is no nearer the nose curve than R (within 1e-9 m).
 static void test_long_flight_onto_a_jaw(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = soak_flight_def(2.3367999999999998, 1.1683999999999999, 0.028575000195715631);
 	const double deg = 3.14159265358979323846 / 180.0;
-	soak_jaws_table(&def.table, 2.3367999999999998, 1.1683999999999999, 0.028575000195715631);
-	def.airborne = true;
-	def.max_time = 60;
-	def.max_events = 20000;
 	pool_table_shape sh;
 	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
 	pool_sim *sim = make_sim(&def);
@@ -342,12 +348,8 @@ static void test_long_flight_onto_a_jaw(void **state) {
 // the events and on samples no ball is inside the nose curve.
 static void test_linked_above_a_hole(void **state) {
 	(void)state;
-	pool_sim_def def = pool_default_sim_def();
+	pool_sim_def def = soak_flight_def(1.9811999999999999, 0.99059999999999993, 0.028575000079588804);
 	const double deg = 3.14159265358979323846 / 180.0;
-	soak_jaws_table(&def.table, 1.9811999999999999, 0.99059999999999993, 0.028575000079588804);
-	def.airborne = true;
-	def.max_time = 60;
-	def.max_events = 20000;
 	pool_table_shape sh;
 	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
 	pool_sim *sim = make_sim(&def);
