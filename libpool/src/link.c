@@ -236,8 +236,8 @@ static int pressed_with(const pool_ball_state *s, pool_vec3 a0, pool_vec3 a1) {
 	const pool_vec3 n = pool_v3_scale(d, 1.0 / dist);
 	const pool_vec3 dv = pool_v3_sub(s[0].vel, s[1].vel);
 	const pool_vec3 da = pool_v3_sub(a0, a1);
-	const double vn = pool_v3_dot(n, dv);
-	const double approach_accel = -pool_v3_dot(n, da) - (pool_v3_dot(dv, dv) - vn * vn) / dist;
+	// (the curvature of the relative path from dv's part across n itself: pool_v3_across2)
+	const double approach_accel = -pool_v3_dot(n, da) - pool_v3_across2(dv, d) / dist;
 	return approach_accel > 0.0;
 }
 

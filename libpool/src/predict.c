@@ -104,12 +104,13 @@ static inline double ball_ball(pool_vec3 dp, pool_vec3 dv, pool_vec3 da, double 
 		return INFINITY; // coincident centres have no normal (placement refuses them)
 	g.gap = dist - d0;
 	// Rate and curvature of the distance |p|: |p|' = p.p'/|p|, |p|'' = (p'.p' + p.p'')/|p| - (p.p')^2/|p|^3
-	// (the tangential part of dv curves a touching pair apart).
+	// = (|dv across dp|^2 + 2 dp.da)/|p| (the tangential part of dv curves a touching pair apart;
+	// taken as that part's own square, never negative, pool_v3_across2 says why).
 	g.speed = -pv / dist;
 	// The curvature decides only when rounding cannot tell the speed's sign (pool_contact_now):
 	// its two divisions are left out for the touching pairs that clearly approach or part.
 	const int speed_decides = g.speed > POOL_APPROACH_EPS || g.speed < -POOL_APPROACH_EPS;
-	g.accel = speed_decides ? 0.0 : -((vv + 2.0 * pool_v3_dot(dp, da)) / dist - pv * pv / (dd * dist));
+	g.accel = speed_decides ? 0.0 : -(pool_v3_across2(dv, dp) + 2.0 * pool_v3_dot(dp, da)) / dist;
 	return pool_contact_next(&g, T);
 }
 

@@ -17,6 +17,7 @@
 #include "sim_fixture.h"
 
 #include "pool/pool.h"
+#include "contact.h"
 #include "link_step.h"
 #include "table_shape.h"
 #include "motion.h"
@@ -678,6 +679,89 @@ static void test_cut_step_keeps_kick_of_time_taken(void **state) {
 	}
 }
 
+// A ball the cluster's step stops beside one parting from it: soak seed 23, cluster shot 168914
+// (10 balls of a cluster, frozen or crawling at 1e-9 m/s, a slow masse shot far away). At t = 0
+// balls 0 and 1 collide, ball 0 is linked with ball 2 and ball 1 with 3 and 4; the first step of
+// {0, 2} stops ball 0, which leaves ball 1 parting from it at 2.1e-11 m/s along their line of
+// centres. Nothing presses them (no relative acceleration, a straight relative path): they
+// part. The contact rule took rounding (+1.5e-36 m/s^2 of curvature) for a press and had them
+// collide at once; that contact cut the step after no time, giving ball 0 back its speed, and
+// the cluster stepped again: 200 link_steps and 11 ball_ball events that changed nothing, at
+// t = 0, before the trigger linked everything. Now no contact is found between them: every
+// ball_ball event is an impulse on a pair not parting (faster than POOL_APPROACH_EPS, the
+// contact rule's threshold), and t = 0 sees a step of each cluster formed there and one cut of
+// each by the other's merge, at most.
+static void test_stopped_ball_beside_a_parting_one(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES;
+	def.max_time = 60.0;
+	def.max_events = 20000;
+	const double R = def.params.ball_radius;
+	pool_sim *sim = make_sim(&def);
+	const pool_ball_state balls[11] = {
+	    {.id = 0, .pos = {1.2188004870454536, 0.32570631429223962, R}, .vel = {-5.1004142536339395e-10, -7.5350724664498322e-10, 0}},
+	    {.id = 1, .pos = {1.1867651942189348, 0.27837912851320684, R}, .vel = {8.4428436621194203e-10, 1.2472994477193723e-09, 0},
+	     .omega = {4.7796387362835433e-05, -3.2352890627536867e-05, 0}},
+	    {.id = 2, .pos = {1.1617962950219574, 0.32978609970575212, R}},
+	    {.id = 3, .pos = {1.1547299018439716, 0.23105194340127791, R}},
+	    {.id = 4, .pos = {1.1297610030838954, 0.28245891369431364, R}},
+	    {.id = 5, .pos = {1.1047921043238191, 0.3338658839873494, R}},
+	    {.id = 6, .pos = {1.1226946090186489, 0.18372475762401219, R}},
+	    {.id = 7, .pos = {1.0977257101374269, 0.23513172816646746, R}, .vel = {1.6678203512817373e-07, -3.433775437046884e-07, 0},
+	     .omega = {-108.25634974698615, -82.17838700794124, 0}},
+	    {.id = 8, .pos = {1.0727568118142516, 0.28653869755999367, R}},
+	    {.id = 9, .pos = {1.0477879134499894, 0.33794566703811141, R}},
+	    {.id = 10, .pos = {1.7208436258103696, 0.790261268599737, R}}};
+	for (int k = 0; k < 11; ++k) {
+		pool_ball_state b = balls[k];
+		b.motion = pool_v3_len(b.vel) > 0.0 || pool_v3_len(b.omega) > 0.0 ? POOL_MOTION_SLIDING : POOL_MOTION_STATIONARY;
+		add_ball(sim, &b);
+	}
+	const double deg = M_PI / 180.0;
+	const pool_strike strike = {5.2216140574946639, -140.52245645480585 * deg, 88.964520228427077 * deg, 0.0,
+	                            0.0099665473304226537};
+	pool_error err;
+	assert_int_equal(pool_sim_strike(sim, 10, &strike, &err), POOL_OK);
+	// Each ball's last recorded state and its time, from the shot's start (state_before reads
+	// pool_sim_state_at(0), after this shot's many events at t = 0).
+	pool_ball_state last[11];
+	double t_last[11] = {0.0};
+	assert_int_equal(pool_sim_state_at(sim, 0.0, last), POOL_OK);
+	scene_report r = run_scene(sim, &def);
+	check_invariants("stopped beside a parting ball", &r, 0.0, 0.0);
+	int count = 0, steps_at_0 = 0, contacts = 0;
+	const pool_event *ev = pool_sim_events(sim, &count);
+	for (int k = 0; k < count; ++k) {
+		steps_at_0 += ev[k].type == POOL_EVENT_LINK_STEP && ev[k].time == 0.0;
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[k]);
+		if (ev[k].type == POOL_EVENT_BALL_BALL) {
+			++contacts;
+			pool_ball_state b[2];
+			for (int q = 0; q < 2; ++q) {
+				const int i = ball_index(last, 11, after[q].id);
+				pool_motion_evolve(&def.params, &last[i], ev[k].time - t_last[i], &b[q]);
+			}
+			const double parting = -pool_closing_speed(b[0].pos, b[0].vel, b[1].pos, b[1].vel);
+			double change = 0.0;
+			for (int q = 0; q < 2; ++q)
+				change += pool_v3_len(pool_v3_sub(after[q].vel, b[q].vel)) + R * pool_v3_len(pool_v3_sub(after[q].omega, b[q].omega));
+			if (!(parting <= POOL_APPROACH_EPS) || !(change > 0.0))
+				fail_msg("event %d (ball_ball %d-%d, t = %.17g): parting at %.3g m/s, velocities changed by %.3g m/s", k,
+				         (int)after[0].id, (int)after[1].id, ev[k].time, parting, change);
+		}
+		for (int q = 0; q < ev[k].ball_count; ++q) {
+			const int i = ball_index(last, 11, after[q].id);
+			last[i] = after[q];
+			t_last[i] = ev[k].time;
+		}
+	}
+	print_message("stopped beside a parting ball: %d events, %d ball_ball, %d link_step at t = 0\n", count, contacts,
+	              steps_at_0);
+	assert_true(steps_at_0 <= 4);
+	pool_sim_destroy(sim);
+}
+
 // A linked ball hit into a facing bounces off it, with restitution: ball 0 on the shelf of the
 // north side pocket, touching its west facing and pinned to it by spin (the cloth drives it into
 // the facing: a cluster of one ball and the facing), and ball 1 rolling at 1 m/s into it along
@@ -753,6 +837,7 @@ int main(void) {
 	    cmocka_unit_test(test_ball_resting_on_two_gathered_at_once),
 	    cmocka_unit_test(test_cut_step_keeps_kick_of_time_taken),
 	    cmocka_unit_test(test_hit_into_a_facing_bounces),
+	    cmocka_unit_test(test_stopped_ball_beside_a_parting_one),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -109,6 +109,36 @@ static void test_touching_curvature(void **state) {
 	assert_true(isinf(pool_predict_ball_ball(dp, dv, pool_v3(0, 0.5 * 0.9 * centripetal, 0), R, 1e-3)));
 }
 
+// Two touching balls moving apart uniformly (no relative acceleration) along their line of
+// centres, slower than POOL_APPROACH_EPS: their distance's curvature is exactly zero, they part
+// and never meet. Written as v.v - (v.d)^2 / d.d, the curvature is a difference of two equal
+// numbers whose rounding takes either sign, and a "positive" one (+1.5e-36 m/s^2) made the pair
+// pressed together, a contact now: soak seed 23, cluster shot 168914, balls 0 and 1 (a linked
+// ball stopped by its cluster's step, the other linked and parting at 2.1e-11 m/s after their
+// collision), where the contact cut the step after no time and the cluster stepped again, 200
+// times at t = 0. Those two balls' own numbers first, then such pairs in every direction.
+static void test_touching_parting_along_the_normal(void **state) {
+	(void)state;
+	const pool_vec3 zero = pool_v3(0, 0, 0);
+	const pool_vec3 p0 = pool_v3(1.2188004870454536, 0.32570631429223962, R);
+	const pool_vec3 p1 = pool_v3(1.1867651942189348, 0.27837912851320684, R);
+	const pool_vec3 v1 = pool_v3(-1.1904582014346001e-11, -1.758717698214981e-11, 0);
+	const pool_vec3 dp = pool_v3_sub(p0, p1), dv = pool_v3_scale(v1, -1.0);
+	assert_true(pool_v3_len(dp) - 2 * R <= POOL_TOUCH_TOLERANCE);                  // touching
+	assert_true(pool_v3_dot(dp, dv) > 0.0 && pool_v3_dot(dp, dv) < POOL_APPROACH_EPS * pool_v3_len(dp)); // parting slowly
+	assert_true(isinf(pool_predict_ball_ball(dp, dv, zero, R, 1e-3)));
+	assert_true(isinf(pool_predict_ball_ball(pool_v3_scale(dp, -1.0), v1, zero, R, 1e-3))); // from the other ball
+	int now = 0;
+	for (int k = 0; k < 3600; ++k) {
+		const double a = 2.0 * PI * k / 3600.0, gap = 1e-9 * (k % 7) / 7.0, speed = 1e-12 * (1 + k % 900);
+		const pool_vec3 n = pool_v3(cos(a), sin(a), 0);
+		const pool_vec3 d = pool_v3_scale(n, 2 * R + gap);
+		const pool_vec3 v = pool_v3_scale(n, speed);
+		now += pool_predict_ball_ball(d, v, zero, R, 1e-3) < INFINITY;
+	}
+	assert_int_equal(now, 0);
+}
+
 // Issue 9, class 1: the cushion version. A ball touching the south rail's contact line
 // (y = dc), leaving it at speed v while its slip pulls it back at a: back at the line at
 // t = 2 v / a, or now when v is within rounding; and a ball drifting to a rail with no friction
@@ -328,6 +358,7 @@ int main(void) {
 		cmocka_unit_test(test_touching_pushed_together),
 		cmocka_unit_test(test_touching_slow_separation_pulled_back),
 		cmocka_unit_test(test_touching_curvature),
+		cmocka_unit_test(test_touching_parting_along_the_normal),
 		cmocka_unit_test(test_cushion_slow_separation_pulled_back),
 		cmocka_unit_test(test_cushion_and_pockets),
 		cmocka_unit_test(test_cushion_touching_pushed_in),
