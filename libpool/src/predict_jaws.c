@@ -71,7 +71,8 @@ static pool_contact_gap sphere_gap(const path *w, double d) {
 	const double dist = sqrt(ww);
 	g.gap = dist - d;
 	g.speed = dist > 0.0 ? -wv / dist : 0.0;
-	g.accel = dist > 0.0 ? -((vv + 2.0 * pool_v3_dot(w->p, w->a)) / dist - wv * wv / (ww * dist)) : 0.0;
+	// (the curvature from v's part across w, never negative: pool_v3_across2)
+	g.accel = dist > 0.0 ? -(pool_v3_across2(w->v, w->p) + 2.0 * pool_v3_dot(w->p, w->a)) / dist : 0.0;
 	return g;
 }
 
