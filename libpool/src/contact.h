@@ -19,7 +19,9 @@
 //   by more than the tolerance.
 //   Otherwise the gap is taken as exactly zero (f(0) = 0, so f = tau q(tau)) and the next
 //   meeting is the first root of q where the bodies approach: the return of a pair that leaves
-//   and is pulled back, found exactly however small the separation in between.
+//   and is pulled back, found exactly however small the separation in between. A pair creeping
+//   in whose acceleration parts it only now (the higher terms may turn it in again before it
+//   opens) meets also where its true gap passes -POOL_TOUCH_TOLERANCE, if that comes first.
 // In every case the bodies never pass through each other between events: a crossing the root
 // solver missed is caught by f's sign at the end of the window and bisected.
 #ifndef POOL_CONTACT_H

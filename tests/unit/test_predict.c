@@ -10,6 +10,7 @@
 
 #include "pool/pool.h"
 #include "geometry.h"
+#include "motion.h"
 #include "predict.h"
 #include "vec3.h"
 
@@ -137,6 +138,46 @@ static void test_touching_parting_along_the_normal(void **state) {
 		now += pool_predict_ball_ball(d, v, zero, R, 1e-3) < INFINITY;
 	}
 	assert_int_equal(now, 0);
+}
+
+// Two balls rolling side by side, touching, released by LINK (soak seed 29, nose shot 34885, balls
+// 0 and 3 at t = 0.092 s): closing at 2.5e-11 m/s, within rounding, their tangential relative
+// speed (7e-5 m/s) curving them apart by 5.8e-9 m/s^2 at this instant, so the drift test lets
+// them go. But their rolling friction, along velocities 3 mrad apart, turns them together, and
+// the higher terms of the gap take over before it ever opens: the closed form has them 1.04e-9 m
+// deep 0.19 s later. The oracle is that closed form, sampled: the contact comes where the overlap
+// first reaches POOL_TOUCH_TOLERANCE (to the sampling's step), and never deeper than that before.
+static void test_touching_creep_turned_in_by_friction(void **state) {
+	(void)state;
+	const pool_params params = pool_default_sim_def().params;
+	const pool_ball_state b0 = {.id = 0, .motion = POOL_MOTION_ROLLING, .pos = {2.132713667384912, 0.2527643382053801, R},
+	                            .vel = {0.01086110987520449, 0.018905383236107836, 0},
+	                            .omega = {-0.6616057125497053, 0.38009133421538005, 0}};
+	const pool_ball_state b3 = {.id = 3, .motion = POOL_MOTION_ROLLING, .pos = {2.104175566486374, 0.20324970100478054, R},
+	                            .vel = {0.010923824194648778, 0.018869237436235288, 0},
+	                            .omega = {-0.6603407676722755, 0.38228606105507473, 0}};
+	const pool_vec3 a0 = pool_motion_accel(&params, &b0), a3 = pool_motion_accel(&params, &b3);
+	const pool_vec3 dp = pool_v3_sub(b0.pos, b3.pos), dv = pool_v3_sub(b0.vel, b3.vel);
+	const pool_vec3 da = pool_v3_scale(pool_v3_sub(a0, a3), 0.5);
+	const double T = 0.3; // both roll on past it (v / (mu_roll g) > 0.2 s)
+	const double t = pool_predict_ball_ball(dp, dv, da, R, T);
+	// The closed form, sampled every 0.1 ms: where the overlap first passes the tolerance.
+	double first_deep = INFINITY, deepest_before = -INFINITY;
+	for (int k = 0; k <= 3000; ++k) {
+		const double tau = 1e-4 * k;
+		const double gap = pool_v3_len(pool_v3_madd(pool_v3_madd(dp, tau, dv), tau * tau, da)) - 2 * R;
+		if (-gap > POOL_TOUCH_TOLERANCE && first_deep == INFINITY)
+			first_deep = tau;
+		if (tau < t)
+			deepest_before = fmax(deepest_before, -gap);
+	}
+	print_message("creep turned in: contact at %.6g s, the overlap passes the tolerance at %.4g s; deepest before %.3g m\n",
+	              t, first_deep, deepest_before);
+	assert_true(first_deep > 0.15 && first_deep < T); // the case: deep only much later
+	assert_true(t <= first_deep && t > first_deep - 1e-4);
+	assert_true(deepest_before <= POOL_TOUCH_TOLERANCE * (1.0 + 1e-6));
+	const double gap_at = pool_v3_len(pool_v3_madd(pool_v3_madd(dp, t, dv), t * t, da)) - 2 * R;
+	assert_true(fabs(gap_at + POOL_TOUCH_TOLERANCE) <= 1e-6 * POOL_TOUCH_TOLERANCE);
 }
 
 // Issue 9, class 1: the cushion version. A ball touching the south rail's contact line
@@ -359,6 +400,7 @@ int main(void) {
 		cmocka_unit_test(test_touching_slow_separation_pulled_back),
 		cmocka_unit_test(test_touching_curvature),
 		cmocka_unit_test(test_touching_parting_along_the_normal),
+		cmocka_unit_test(test_touching_creep_turned_in_by_friction),
 		cmocka_unit_test(test_cushion_slow_separation_pulled_back),
 		cmocka_unit_test(test_cushion_and_pockets),
 		cmocka_unit_test(test_cushion_touching_pushed_in),
