@@ -762,6 +762,62 @@ static void test_stopped_ball_beside_a_parting_one(void **state) {
 	pool_sim_destroy(sim);
 }
 
+// Two balls LINK releases rolling side by side, touching: soak seed 29, nose shot 34885 (a slow
+// drawn stroke into a cluster of five near the east cushion, airborne motion). At 0.092 s balls
+// 0 and 3 leave their cluster closing at 2.5e-11 m/s, parted by their tangential speed's
+// curvature and turned in by their rolling friction (test_predict's
+// test_touching_creep_turned_in_by_friction); the contact rule let them go and they went 1.04e-9
+// m into each other by 0.284 s. Sampled every 0.5 ms, no two balls now overlap by more than
+// POOL_TOUCH_TOLERANCE (plus the rounding of positions of metres, 1e-12 m).
+static void test_released_pair_turned_in(void **state) {
+	(void)state;
+	pool_sim_def def = pool_default_sim_def();
+	def.table.cushion_height = 0.054232553156628685;
+	def.table.pockets = POOL_POCKETS_MOUTH_LINES;
+	def.airborne = true;
+	def.max_time = 60.0;
+	def.max_events = 20000;
+	const double R = def.params.ball_radius;
+	pool_sim *sim = make_sim(&def);
+	const pool_ball_state balls[6] = {
+	    {.id = 0, .pos = {2.1322367926096848, 0.2518545928063145, R}},
+	    {.id = 1, .pos = {2.1608117927738015, 0.30134794491685379, R}, .vel = {-0.046773081472444952, 0.027004451162141209, 0},
+	     .omega = {-0.59998188892536042, -2.3663683131059257, 0}},
+	    {.id = 2, .pos = {2.1893867927738015, 0.35084129674313463, R}},
+	    {.id = 3, .pos = {2.1036617928339187, 0.2023612413684186, R}, .vel = {2.2940844975033119e-08, 3.9734709065318398e-08, 0},
+	     .omega = {-14.729004988004268, 8.5037949947196338, 0}},
+	    {.id = 4, .pos = {2.2340279859063763, 0.38652443527802477, R}, .vel = {1.6581910333799919e-07, 1.3254453165194376e-07, 0},
+	     .omega = {-0.27552121730667922, -1.0982431753498736, 0}},
+	    {.id = 5, .pos = {0.1251843855091041, 0.75034721449943476, R}}};
+	for (int k = 0; k < 6; ++k) {
+		pool_ball_state b = balls[k];
+		b.motion = pool_v3_len(b.vel) > 0.0 || pool_v3_len(b.omega) > 0.0 ? POOL_MOTION_SLIDING : POOL_MOTION_STATIONARY;
+		add_ball(sim, &b);
+	}
+	const double deg = M_PI / 180.0;
+	const pool_strike strike = {0.40282796001158799, 180.96821933267609 * deg, 23.870748438084686 * deg,
+	                            -5.249142342840093e-18, -0.028574999999971425};
+	pool_error err;
+	assert_int_equal(pool_sim_strike(sim, 5, &strike, &err), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	assert_int_equal(pool_sim_stop_reason(sim), POOL_STOP_REST);
+	double worst = -INFINITY, worst_t = 0.0;
+	const double end = fmin(pool_sim_end_time(sim), 1.0); // (the pair's part of the shot: 0.09 to 0.3 s)
+	for (double t = 0.0; t <= end; t += 5e-4) {
+		pool_ball_state s[6];
+		assert_int_equal(pool_sim_state_at(sim, t, s), POOL_OK);
+		for (int i = 0; i < 6; ++i)
+			for (int j = i + 1; j < 6; ++j) {
+				const double overlap = 2.0 * R - pool_v3_len(pool_v3_sub(s[i].pos, s[j].pos));
+				if (overlap > worst)
+					worst = overlap, worst_t = t;
+			}
+	}
+	print_message("released pair turned in: worst overlap %.4g m at t = %.4g s\n", worst, worst_t);
+	assert_true(worst <= POOL_TOUCH_TOLERANCE + 1e-12);
+	pool_sim_destroy(sim);
+}
+
 // A linked ball hit into a facing bounces off it, with restitution: ball 0 on the shelf of the
 // north side pocket, touching its west facing and pinned to it by spin (the cloth drives it into
 // the facing: a cluster of one ball and the facing), and ball 1 rolling at 1 m/s into it along
@@ -838,6 +894,7 @@ int main(void) {
 	    cmocka_unit_test(test_cut_step_keeps_kick_of_time_taken),
 	    cmocka_unit_test(test_hit_into_a_facing_bounces),
 	    cmocka_unit_test(test_stopped_ball_beside_a_parting_one),
+	    cmocka_unit_test(test_released_pair_turned_in),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
