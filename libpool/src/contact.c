@@ -167,6 +167,25 @@ double pool_contact_first_falling_root_from(const double *p, int deg, double lo,
 	return u < INFINITY ? lo + u : INFINITY;
 }
 
+// A pair creeping in (q(0) < 0) that the drift test let go, the acceleration now parting it,
+// may still go deeper: the acceleration is f's curvature at this instant only, and the higher
+// terms can turn it before q ever rises (two balls rolling side by side at 2.5e-11 m/s, the
+// tangential speed parting them by 6e-9 m/s^2 while their friction turns them together: 1.04e-9
+// m deep 0.19 s later, soak seed 29, nose shot 34885). So the contact is q's next meeting, or
+// where the gap, from its true value now, passes -POOL_TOUCH_TOLERANCE if that comes first: the
+// first falling root of f + POOL_TOUCH_TOLERANCE df/dgap (df/dgap = -f'(0) / speed: 1 for a
+// line, 2 |p| for a sphere). In the common creeping pair the overlap turns within rounding and
+// that root does not exist.
+static double creeping_next(const pool_contact_gap *g, const double *q, double T) {
+	const double next = pool_contact_first_falling_root(q, 3, T);
+	const double per_gap = -g->f[1] / g->speed;
+	if (!(per_gap > 0.0 && per_gap < INFINITY))
+		return next;
+	const double deep[5] = {g->f[0] + per_gap * POOL_TOUCH_TOLERANCE, g->f[1], g->f[2], g->f[3], g->f[4]};
+	const double t = pool_contact_first_falling_root(deep, 4, next < T ? next : T);
+	return t < next ? t : next;
+}
+
 double pool_contact_next(const pool_contact_gap *g, double T) {
 	if (!(T >= 0.0))
 		return INFINITY;
@@ -177,26 +196,9 @@ double pool_contact_next(const pool_contact_gap *g, double T) {
 	// Touching, not colliding now: the gap is exactly zero, f = tau q(tau), and for tau > 0 q
 	// has the sign of the gap (a root of q where it falls is one where f falls: f' = tau q').
 	// A pair creeping together too slowly to matter (q(0) < 0) first separates: that root of q
-	// rises and is stepped over.
+	// rises and is stepped over, unless the pair goes deeper first (creeping_next).
 	const double q[4] = {g->f[1], g->f[2], g->f[3], g->f[4]};
-	const double next = pool_contact_first_falling_root(q, 3, T);
-	// A pair creeping in (q(0) < 0) that the drift test above let go, the acceleration now
-	// parting it, may still go deeper: the acceleration is f's curvature at this instant only,
-	// and the higher terms can turn it before q ever rises (two balls rolling side by side at
-	// 2.5e-11 m/s, the tangential speed parting them by 6e-9 m/s^2 while their friction turns
-	// them together: 1.04e-9 m deep 0.19 s later, soak seed 29, nose shot 34885). So the contact
-	// is also where the gap, from its true value now, passes -POOL_TOUCH_TOLERANCE, should that
-	// come before q's next meeting: the first falling root of f + POOL_TOUCH_TOLERANCE df/dgap
-	// (df/dgap = -f'(0) / speed: 1 for a line, 2 |p| for a sphere). In the common creeping
-	// pair the overlap turns within rounding and that root does not exist.
-	if (g->f[1] < 0.0 && g->speed > 0.0) {
-		const double per_gap = -g->f[1] / g->speed;
-		if (per_gap > 0.0 && per_gap < INFINITY) {
-			const double deep[5] = {g->f[0] + per_gap * POOL_TOUCH_TOLERANCE, g->f[1], g->f[2], g->f[3], g->f[4]};
-			const double t = pool_contact_first_falling_root(deep, 4, next < T ? next : T);
-			if (t < next)
-				return t;
-		}
-	}
-	return next;
+	if (g->f[1] < 0.0 && g->speed > 0.0)
+		return creeping_next(g, q, T);
+	return pool_contact_first_falling_root(q, 3, T);
 }

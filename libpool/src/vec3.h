@@ -29,14 +29,13 @@ static inline double pool_closing_speed(pool_vec3 pa, pool_vec3 va, pool_vec3 pb
 	const pool_vec3 d = pool_v3_sub(pa, pb);
 	return -pool_v3_dot(d, pool_v3_sub(va, vb)) / pool_v3_len(d);
 }
-/// |v|^2 less v's part along d squared: the squared length of v's part across d (d nonzero),
-/// taken from that part itself so that it is never negative. Written as v.v - (v.d)^2 / d.d, the
-/// difference of two equal numbers for v along d rounds to either sign (+-1e-36 for 2e-11 m/s),
-/// and a relative path's curvature, |v_t|^2 / |d|, would bend a pair together by nothing but
-/// rounding (soak seed 23, cluster shot 168914).
+/// The squared length of v's part across d (d nonzero): |v x d|^2 / d.d, never negative.
+/// Written as v.v - (v.d)^2 / d.d, the difference of two equal numbers for v along d rounds to
+/// either sign (+-1e-36 for 2e-11 m/s), and a relative path's curvature, |v_t|^2 / |d|, would
+/// bend a pair together by nothing but rounding (soak seed 23, cluster shot 168914).
 static inline double pool_v3_across2(pool_vec3 v, pool_vec3 d) {
-	const pool_vec3 t = pool_v3_madd(v, -pool_v3_dot(v, d) / pool_v3_dot(d, d), d);
-	return pool_v3_dot(t, t);
+	const pool_vec3 c = pool_v3_cross(v, d); // |v x d| = |v across d| |d|
+	return pool_v3_dot(c, c) / pool_v3_dot(d, d);
 }
 /// k x a with k = (0, 0, 1).
 static inline pool_vec3 pool_v3_kcross(pool_vec3 a) { return pool_v3(-a.y, a.x, 0.0); }
