@@ -713,11 +713,8 @@ static void test_stopped_ball_beside_a_parting_one(void **state) {
 	    {.id = 8, .pos = {1.0727568118142516, 0.28653869755999367, R}},
 	    {.id = 9, .pos = {1.0477879134499894, 0.33794566703811141, R}},
 	    {.id = 10, .pos = {1.7208436258103696, 0.790261268599737, R}}};
-	for (int k = 0; k < 11; ++k) {
-		pool_ball_state b = balls[k];
-		b.motion = pool_v3_len(b.vel) > 0.0 || pool_v3_len(b.omega) > 0.0 ? POOL_MOTION_SLIDING : POOL_MOTION_STATIONARY;
-		add_ball(sim, &b);
-	}
+	for (int k = 0; k < 11; ++k)
+		add_ball(sim, &balls[k]); // (its motion derived from its velocities)
 	const double deg = M_PI / 180.0;
 	const pool_strike strike = {5.2216140574946639, -140.52245645480585 * deg, 88.964520228427077 * deg, 0.0,
 	                            0.0099665473304226537};
@@ -789,11 +786,8 @@ static void test_released_pair_turned_in(void **state) {
 	    {.id = 4, .pos = {2.2340279859063763, 0.38652443527802477, R}, .vel = {1.6581910333799919e-07, 1.3254453165194376e-07, 0},
 	     .omega = {-0.27552121730667922, -1.0982431753498736, 0}},
 	    {.id = 5, .pos = {0.1251843855091041, 0.75034721449943476, R}}};
-	for (int k = 0; k < 6; ++k) {
-		pool_ball_state b = balls[k];
-		b.motion = pool_v3_len(b.vel) > 0.0 || pool_v3_len(b.omega) > 0.0 ? POOL_MOTION_SLIDING : POOL_MOTION_STATIONARY;
-		add_ball(sim, &b);
-	}
+	for (int k = 0; k < 6; ++k)
+		add_ball(sim, &balls[k]); // (its motion derived from its velocities)
 	const double deg = M_PI / 180.0;
 	const pool_strike strike = {0.40282796001158799, 180.96821933267609 * deg, 23.870748438084686 * deg,
 	                            -5.249142342840093e-18, -0.028574999999971425};
