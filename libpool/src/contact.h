@@ -84,4 +84,8 @@ static inline int pool_contact_quadratic_apart(double f0, double f1, double f2, 
 /// 1 when bodies in contact (gap <= POOL_TOUCH_TOLERANCE) collide now by the rules above.
 int pool_contact_now(double gap, double speed, double accel);
 
+/// pool_contact_now over a window of T seconds: a drift in counts only if it can pass the
+/// tolerance within the window (at most speed T deeper).
+int pool_contact_now_within(double gap, double speed, double accel, double T);
+
 #endif

@@ -63,8 +63,11 @@ static void test_touching(void **state) {
 	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(-1e-3, 0, 0), zero, R, 1.0)));
 	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(0, 1.0, 0), zero, R, 1.0)));
 	// Approaching slower than POOL_APPROACH_EPS with nothing to stop the drift: the overlap would
-	// grow without bound, so this is a contact now too (before, it was ignored: interpenetration).
-	assert_true(pool_predict_ball_ball(dp, pool_v3(1e-12, 0, 0), zero, R, 1.0) == 0.0);
+	// grow without bound, so this is a contact now too (before, it was ignored: interpenetration),
+	// once the window holds the drift past the tolerance (1e-12 m/s: 1000 s). Over a window of
+	// 1 s it goes 1e-12 m deep: no contact in it (the next prediction, at its end, looks again).
+	assert_true(pool_predict_ball_ball(dp, pool_v3(1e-12, 0, 0), zero, R, 2000.0) == 0.0);
+	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(1e-12, 0, 0), zero, R, 1.0)));
 	// ... but pushed apart at 1 m/s^2 the same drift overlaps by v^2 / 2a = 5e-25 m at most and
 	// ends by itself: no contact.
 	assert_true(isinf(pool_predict_ball_ball(dp, pool_v3(1e-12, 0, 0), pool_v3(-0.5, 0, 0), R, 1.0)));
@@ -178,6 +181,23 @@ static void test_touching_creep_turned_in_by_friction(void **state) {
 	assert_true(deepest_before <= POOL_TOUCH_TOLERANCE * (1.0 + 1e-6));
 	const double gap_at = pool_v3_len(pool_v3_madd(pool_v3_madd(dp, t, dv), t * t, da)) - 2 * R;
 	assert_true(fabs(gap_at + POOL_TOUCH_TOLERANCE) <= 1e-6 * POOL_TOUCH_TOLERANCE);
+}
+
+// A drift of rounding, 1e-30 m/s (a linked ball's LCP velocity), into a touching ball over a
+// window of no time (the cluster's step at this instant) or of a step: v^2 / 2|a| with |a| the
+// curvature of that drift, 6.5e-60 m/s^2, put it 8.6 cm deep, a contact now; in the window it
+// goes nowhere. Soak seed 45, cluster shot 1988: balls 1 and 4, the contact at the step's start
+// cut it after no time and the cluster stepped again, 19 times at t = 0.
+static void test_touching_rounding_drift(void **state) {
+	(void)state;
+	const pool_vec3 zero = pool_v3(0, 0, 0);
+	const pool_vec3 n = pool_v3(0.6, -0.8, 0);
+	const pool_vec3 dp = pool_v3_scale(n, 2 * R + 2.21e-10);
+	const pool_vec3 dv = pool_v3(-0.9e-30, 0.7e-30, 0); // closing at 1.1e-30 m/s, a little across
+	assert_true(-pool_v3_dot(dp, dv) / pool_v3_len(dp) > 0.0);
+	assert_true(isinf(pool_predict_ball_ball(dp, dv, zero, R, 0.0)));
+	assert_true(isinf(pool_predict_ball_ball(dp, dv, zero, R, 16e-3)));
+	assert_true(isinf(pool_predict_ball_ball(dp, dv, zero, R, 60.0)));
 }
 
 // Issue 9, class 1: the cushion version. A ball touching the south rail's contact line
@@ -401,6 +421,7 @@ int main(void) {
 		cmocka_unit_test(test_touching_curvature),
 		cmocka_unit_test(test_touching_parting_along_the_normal),
 		cmocka_unit_test(test_touching_creep_turned_in_by_friction),
+		cmocka_unit_test(test_touching_rounding_drift),
 		cmocka_unit_test(test_cushion_slow_separation_pulled_back),
 		cmocka_unit_test(test_cushion_and_pockets),
 		cmocka_unit_test(test_cushion_touching_pushed_in),
