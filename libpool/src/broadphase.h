@@ -50,7 +50,7 @@ typedef enum pool_broadphase_mode {
 /// At most this many pieces per segment (a longer path gets longer pieces, so bigger boxes).
 #define POOL_BROADPHASE_MAX_PIECES 64
 
-/// A piece of a ball's reach filed in one cell.
+/// A piece of a ball's reach filed in one cell (consecutive pieces in the same cell: one entry).
 typedef struct pool_broadphase_entry {
 	int body;          ///< the ball's index
 	int cell;          ///< the cell it is filed in
@@ -58,6 +58,7 @@ typedef struct pool_broadphase_entry {
 	int next_own;      ///< the ball's next entry (-1: none); also the free list's link
 	int moving;        ///< the ball translates in this segment
 	double from, to;   ///< s, absolute: the piece's time interval
+	double box[4];     ///< m, x_lo, x_hi, y_lo, y_hi: where the centre stays then, widened by `radius`
 } pool_broadphase_entry;
 
 /// The grid, the entries, and the reverse partner lists.
@@ -75,6 +76,7 @@ typedef struct pool_broadphase {
 	int cap_entries, used_entries; ///< entries allocated, and handed out at least once
 	int free_entry;                ///< first free entry (-1: none)
 	int *own;                  ///< first entry of each ball (-1: none)
+	double *filed;             ///< s, the window [from, to] each ball's entries cover, two per ball
 	uint64_t *near;            ///< candidate bits of a query, one per ball
 	int near_lo, near_hi;      ///< words of `near` a query may have marked
 	int watching;              ///< the partner lists are kept for this shot
@@ -99,7 +101,9 @@ void pool_broadphase_place(pool_broadphase *bp, const pool_allocator *a, int i, 
 
 /// Marks in bp->near every ball other than i with a piece near ball i's path over [now, horizon]
 /// (moving balls only when i does not translate) and returns their count. The marks must be
-/// taken with pool_broadphase_next_near, which clears them.
+/// taken with pool_broadphase_next_near, which clears them. When ball i's entries cover the
+/// window (its segment was placed over [from, horizon] with from <= now: every search of the
+/// schedule), its own entries are the pieces looked from, without cutting its path again.
 int pool_broadphase_query(pool_broadphase *bp, int i, const pool_segment *seg, double now, double horizon);
 
 /// The next marked ball after `after` (-1 to start), clearing the marks it passes; -1 at the end.
