@@ -15,8 +15,8 @@
 #define MAX_CELLS (1 << 20)
 
 /// Entries reserved per ball when a shot starts (more grow as needed): a resting ball takes 1 to 4
-/// cells, a moving one its path's. The gas of pool-bench-scale files 3.6 a ball at its start and
-/// at most 4.3 a ball later (256 to 4,096 balls).
+/// cells, a moving one its path's. The gas of pool-bench-scale (a quarter of the balls rolling)
+/// takes at most 3.4 to 4.0 a ball over its 2 s (64 to 4,096 balls).
 #define ENTRIES_PER_BALL 6
 
 // A piece of a path: an interval of time and the box (in the plane) the centre stays in.
