@@ -19,39 +19,79 @@
 /// takes at most 3.4 to 4.0 a ball over its 2 s (64 to 4,096 balls).
 #define ENTRIES_PER_BALL 6
 
-// A piece of a path: an interval of time and the box (in the plane) the centre stays in.
+// A piece of a path: an interval of time and the box (in the plane) the centre stays in, widened
+// by bp->radius (x_lo, x_hi, y_lo, y_hi): two balls whose widened boxes are apart at every common
+// instant cannot come within 2 (R + margin) of each other.
 typedef struct piece {
-	double from, to;           // s, absolute
-	double x_lo, x_hi, y_lo, y_hi; // m
+	double from, to; // s, absolute
+	double box[4];   // m
 } piece;
+
+// One coordinate x0 + v t + a t^2 / 2 of a path at the ends of the pieces (times from the
+// segment's start), and its vertex, where its speed changes sign.
+typedef struct axis {
+	double x0, v, a;
+	double vertex_t, vertex_x; // the vertex (vertex_t NaN: none on the path)
+} axis;
+
+static inline axis axis_of(double x0, double v, double a) {
+	axis c = {x0, v, a, NAN, 0.0};
+	if (a != 0.0) {
+		c.vertex_t = -v / a;
+		c.vertex_x = x0 + c.vertex_t * v + 0.5 * c.vertex_t * c.vertex_t * a;
+	}
+	return c;
+}
+
+static inline double axis_at(const axis *c, double t) { return c->x0 + t * c->v + 0.5 * t * t * c->a; }
+
+// The range of the coordinate over a piece whose ends (at t_lo, t_hi) are e0 and e1: the ends
+// and, when it lies inside, the vertex (as pool_segment_range_1d, which takes the vertex only
+// where the speed visibly changes sign: this range holds that one).
+static inline void axis_range(const axis *c, double t_lo, double t_hi, double e0, double e1, double *lo, double *hi) {
+	*lo = e0 < e1 ? e0 : e1;
+	*hi = e0 < e1 ? e1 : e0;
+	if (c->vertex_t > t_lo && c->vertex_t < t_hi) {
+		*lo = c->vertex_x < *lo ? c->vertex_x : *lo;
+		*hi = c->vertex_x > *hi ? c->vertex_x : *hi;
+	}
+}
 
 // Cuts the segment's path over [from, to] (absolute) into pieces at most a cell long (at most
 // POOL_BROADPHASE_MAX_PIECES); returns their count. A ball that does not translate is one piece.
+// Each end between two pieces is evaluated once, for both.
 static int cut(const pool_broadphase *bp, const pool_segment *seg, double from, double to, piece *out) {
 	const pool_ball_state *s = &seg->start;
+	const double r = bp->radius;
 	if (!(to >= from))
 		to = from;
-	int k = 1;
-	const double t_lo = from - seg->t0, span = to - from;
-	if (seg->model->translating) {
-		// Distance travelled over the window at most |v(t_lo)| span + |a| span^2 / 2 (planar; the
-		// 1-norms bound the lengths: a piece may come out shorter than a cell, never longer).
-		const double vx = s->vel.x + t_lo * seg->acc.x, vy = s->vel.y + t_lo * seg->acc.y;
-		const double reach = (fabs(vx) + fabs(vy) + 0.5 * span * (fabs(seg->acc.x) + fabs(seg->acc.y))) * span;
-		const double cells = reach * bp->inv_cell;
-		k = cells < POOL_BROADPHASE_MAX_PIECES ? 1 + (int)cells : POOL_BROADPHASE_MAX_PIECES;
+	if (!seg->model->translating) {
+		out[0] = (piece){from, to, {s->pos.x - r, s->pos.x + r, s->pos.y - r, s->pos.y + r}};
+		return 1;
 	}
+	const double t_lo = from - seg->t0, span = to - from;
+	// Distance travelled over the window at most |v(t_lo)| span + |a| span^2 / 2 (planar; the
+	// 1-norms bound the lengths: a piece may come out shorter than a cell, never longer).
+	const double vx = s->vel.x + t_lo * seg->acc.x, vy = s->vel.y + t_lo * seg->acc.y;
+	const double reach = (fabs(vx) + fabs(vy) + 0.5 * span * (fabs(seg->acc.x) + fabs(seg->acc.y))) * span;
+	const double cells = reach * bp->inv_cell;
+	const int k = cells < POOL_BROADPHASE_MAX_PIECES ? 1 + (int)cells : POOL_BROADPHASE_MAX_PIECES;
+	const axis ax = axis_of(s->pos.x, s->vel.x, seg->acc.x), ay = axis_of(s->pos.y, s->vel.y, seg->acc.y);
+	double t0 = t_lo, x0 = axis_at(&ax, t0), y0 = axis_at(&ay, t0);
 	for (int p = 0; p < k; ++p) {
 		piece *q = &out[p];
-		q->from = p == 0 ? from : from + span * p / k;
+		q->from = p == 0 ? from : out[p - 1].to;
 		q->to = p == k - 1 ? to : from + span * (p + 1) / k;
-		if (!seg->model->translating) {
-			q->x_lo = q->x_hi = s->pos.x;
-			q->y_lo = q->y_hi = s->pos.y;
-			continue;
-		}
-		pool_segment_range_1d(s->pos.x, s->vel.x, seg->acc.x, q->from - seg->t0, q->to - seg->t0, &q->x_lo, &q->x_hi);
-		pool_segment_range_1d(s->pos.y, s->vel.y, seg->acc.y, q->from - seg->t0, q->to - seg->t0, &q->y_lo, &q->y_hi);
+		const double t1 = q->to - seg->t0, x1 = axis_at(&ax, t1), y1 = axis_at(&ay, t1);
+		axis_range(&ax, t0, t1, x0, x1, &q->box[0], &q->box[1]);
+		axis_range(&ay, t0, t1, y0, y1, &q->box[2], &q->box[3]);
+		q->box[0] -= r;
+		q->box[1] += r;
+		q->box[2] -= r;
+		q->box[3] += r;
+		t0 = t1;
+		x0 = x1;
+		y0 = y1;
 	}
 	return k;
 }
@@ -64,15 +104,6 @@ static inline int cell_of(double x, double x0, double inv_cell, double last) {
 	c = c > 0.0 ? c : 0.0;
 	c = c < last ? c : last;
 	return (int)c;
-}
-
-// A piece's box with a ball's radius around it (x_lo, x_hi, y_lo, y_hi): two balls whose widened
-// boxes are apart at every common instant cannot come within 2 (R + margin) of each other.
-static inline void widen(const pool_broadphase *bp, const piece *q, double box[4]) {
-	box[0] = q->x_lo - bp->radius;
-	box[1] = q->x_hi + bp->radius;
-	box[2] = q->y_lo - bp->radius;
-	box[3] = q->y_hi + bp->radius;
 }
 
 // The cells a widened box reaches.
@@ -165,11 +196,8 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 		return 0;
 	// The partner lists, whatever the search: after an event they name the balls to predict
 	// again, where a scan of every ball would read every ball's record.
-	for (int i = 0; i < n; ++i) {
+	for (int i = 0; i < n; ++i)
 		bp->own[i] = bp->watch_first[i] = bp->watch_next[i] = bp->watch_prev[i] = -1;
-		bp->filed[2 * i] = INFINITY;
-		bp->filed[2 * i + 1] = -INFINITY;
-	}
 	bp->watching = 1;
 	const int use = bp->mode == POOL_BROADPHASE_GRID || (bp->mode == POOL_BROADPHASE_AUTO && n >= POOL_BROADPHASE_MIN_BALLS);
 	if (!use)
@@ -198,6 +226,10 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 		bp->head[c] = -1;
 	bp->used_entries = 0;
 	bp->free_entry = -1;
+	for (int i = 0; i < n; ++i) {
+		bp->filed[2 * i] = INFINITY; // no window filed yet
+		bp->filed[2 * i + 1] = -INFINITY;
+	}
 	// Room at once for the entries a shot of n balls files at its start (its first prediction
 	// files every ball), rather than growing to it a doubling at a time, each copying the last.
 	if (reserve_entries(bp, a, ENTRIES_PER_BALL * n))
@@ -225,8 +257,7 @@ void pool_broadphase_place(pool_broadphase *bp, const pool_allocator *a, int i, 
 	const int k = cut(bp, seg, from, to, pieces);
 	const int moving = seg->model->translating;
 	for (int p = 0; p < k; ++p) {
-		double box[4];
-		widen(bp, &pieces[p], box);
+		const double *box = pieces[p].box;
 		int cx0, cx1, cy0, cy1;
 		cells(bp, box, &cx0, &cx1, &cy0, &cy1);
 		for (int cy = cy0; cy <= cy1; ++cy)
@@ -293,8 +324,7 @@ int pool_broadphase_query(pool_broadphase *bp, int i, const pool_segment *seg, d
 		piece pieces[POOL_BROADPHASE_MAX_PIECES];
 		const int k = cut(bp, seg, now, horizon, pieces);
 		for (int p = 0; p < k; ++p) {
-			double box[4];
-			widen(bp, &pieces[p], box);
+			const double *box = pieces[p].box;
 			int cx0, cx1, cy0, cy1;
 			cells(bp, box, &cx0, &cx1, &cy0, &cy1);
 			for (int cy = cy0; cy <= cy1; ++cy)
