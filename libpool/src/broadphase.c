@@ -14,6 +14,9 @@
 /// At most this many cells: a table far larger than the balls gets larger cells.
 #define MAX_CELLS (1 << 20)
 
+/// A query sorts at most this many candidates itself; more it takes in order from their marks.
+#define SORT_MAX 16
+
 /// Entries reserved per ball when a shot starts (more grow as needed): a resting ball takes 1 to 4
 /// cells, a moving one its path's. The gas of pool-bench-scale (a quarter of the balls rolling)
 /// takes at most 3.4 to 4.0 a ball over its 2 s (64 to 4,096 balls).
@@ -124,11 +127,11 @@ static pool_result reserve_balls(pool_broadphase *bp, const pool_allocator *a, i
 	if (n <= bp->cap_balls)
 		return POOL_OK;
 	const int cap = pool_mem_next_cap(bp->cap_balls, n), words = (cap + 63) / 64;
-	void **arrays[] = {(void **)&bp->own, (void **)&bp->watch_first, (void **)&bp->watch_next, (void **)&bp->watch_prev,
-	                   (void **)&bp->filed};
-	const size_t elems[] = {sizeof(int), sizeof(int), sizeof(int), sizeof(int), 2 * sizeof(double)};
+	void **arrays[] = {(void **)&bp->own,        (void **)&bp->watch_first, (void **)&bp->watch_next,
+	                   (void **)&bp->watch_prev, (void **)&bp->filed,       (void **)&bp->found};
+	const size_t elems[] = {sizeof(int), sizeof(int), sizeof(int), sizeof(int), 2 * sizeof(double), sizeof(int)};
 	uint64_t *near = pool_mem_alloc(a, sizeof(uint64_t) * (size_t)words);
-	if (!near || pool_mem_grow(a, arrays, elems, 5, 0, cap)) {
+	if (!near || pool_mem_grow(a, arrays, elems, 6, 0, cap)) {
 		pool_mem_free(a, near);
 		return POOL_ERR_OUT_OF_MEMORY;
 	}
@@ -234,8 +237,6 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 	// files every ball), rather than growing to it a doubling at a time, each copying the last.
 	if (reserve_entries(bp, a, ENTRIES_PER_BALL * n))
 		return 0;
-	bp->near_lo = 0;
-	bp->near_hi = -1;
 	bp->on = 1;
 	return 1;
 }
@@ -291,8 +292,9 @@ void pool_broadphase_place(pool_broadphase *bp, const pool_allocator *a, int i, 
 	bp->filed[2 * i + 1] = to;
 }
 
-// Marks the balls other than i filed in cell c over [from, to] whose widened box meets `box`
-// (moving ones only when ball i does not move); adds their count to *count.
+// Lists in bp->found (from *count on) the balls other than i filed in cell c over [from, to]
+// whose widened box meets `box` (moving ones only when ball i does not move), each once: a ball
+// listed is marked in bp->near, its word in [*lo, *hi].
 static inline void walk(pool_broadphase *bp, int i, int moving, int c, double from, double to, const double box[4],
                         int *count, int *lo, int *hi) {
 	for (int e = bp->head[c]; e >= 0; e = bp->entries[e].next) {
@@ -304,15 +306,15 @@ static inline void walk(pool_broadphase *bp, int i, int moving, int c, double fr
 		if (bp->near[w] & bit)
 			continue;
 		bp->near[w] |= bit;
-		*lo = w < *lo || *hi < *lo ? w : *lo;
+		*lo = w < *lo ? w : *lo;
 		*hi = w > *hi ? w : *hi;
-		++*count;
+		bp->found[(*count)++] = x->body;
 	}
 }
 
 int pool_broadphase_query(pool_broadphase *bp, int i, const pool_segment *seg, double now, double horizon) {
 	const int moving = seg->model->translating;
-	int count = 0, lo = bp->near_lo, hi = bp->near_hi;
+	int count = 0, lo = bp->n, hi = -1;
 	if (bp->filed[2 * i] <= now && bp->filed[2 * i + 1] == horizon) {
 		// Ball i's own entries: its pieces over a window holding [now, horizon], one a cell.
 		for (int e = bp->own[i]; e >= 0; e = bp->entries[e].next_own) {
@@ -332,24 +334,24 @@ int pool_broadphase_query(pool_broadphase *bp, int i, const pool_segment *seg, d
 					walk(bp, i, moving, cy * bp->nx + cx, pieces[p].from, pieces[p].to, box, &count, &lo, &hi);
 		}
 	}
-	bp->near_lo = lo;
-	bp->near_hi = hi;
-	return count;
-}
-
-int pool_broadphase_next_near(pool_broadphase *bp, int after) {
-	int w = after < 0 ? bp->near_lo : after >> 6;
-	for (; w <= bp->near_hi; ++w) {
-		if (bp->near[w]) {
-			const int b = __builtin_ctzll(bp->near[w]);
-			bp->near[w] &= bp->near[w] - 1; // clears the lowest mark
-			bp->near_lo = w;
-			return 64 * w + b;
+	// In index order, the marks cleared: a few balls sorted in place, more read off the marks.
+	if (count <= SORT_MAX) {
+		for (int k = 1; k < count; ++k) {
+			const int b = bp->found[k];
+			int at = k;
+			for (; at > 0 && bp->found[at - 1] > b; --at)
+				bp->found[at] = bp->found[at - 1];
+			bp->found[at] = b;
 		}
+		for (int k = 0; k < count; ++k)
+			bp->near[bp->found[k] >> 6] = 0;
+	} else {
+		int k = 0;
+		for (int w = lo; w <= hi; ++w)
+			for (; bp->near[w]; bp->near[w] &= bp->near[w] - 1)
+				bp->found[k++] = 64 * w + __builtin_ctzll(bp->near[w]);
 	}
-	bp->near_lo = 0; // every mark taken: empty again
-	bp->near_hi = -1;
-	return -1;
+	return count;
 }
 
 void pool_broadphase_repartner(pool_broadphase *bp, int x, int old, int partner) {
@@ -374,7 +376,8 @@ void pool_broadphase_repartner(pool_broadphase *bp, int x, int old, int partner)
 }
 
 void pool_broadphase_free(pool_broadphase *bp, const pool_allocator *a) {
-	void *arrays[] = {bp->head, bp->entries, bp->own, bp->filed, bp->near, bp->watch_first, bp->watch_next, bp->watch_prev};
+	void *arrays[] = {bp->head,        bp->entries,    bp->own,        bp->filed, bp->found,
+	                  bp->near,        bp->watch_first, bp->watch_next, bp->watch_prev};
 	for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
 		pool_mem_free(a, arrays[k]);
 	const pool_broadphase_mode mode = bp->mode;

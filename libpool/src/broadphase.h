@@ -77,8 +77,8 @@ typedef struct pool_broadphase {
 	int free_entry;                ///< first free entry (-1: none)
 	int *own;                  ///< first entry of each ball (-1: none)
 	double *filed;             ///< s, the window [from, to] each ball's entries cover, two per ball
-	uint64_t *near;            ///< candidate bits of a query, one per ball
-	int near_lo, near_hi;      ///< words of `near` a query may have marked
+	uint64_t *near;            ///< a query's marks, one bit per ball (all clear between queries)
+	int *found;                ///< the balls a query found, in index order
 	int watching;              ///< the partner lists are kept for this shot
 	int *watch_first, *watch_next, *watch_prev; ///< balls whose partner is a ball (-1 ends)
 	int cap_balls;
@@ -99,15 +99,12 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 void pool_broadphase_place(pool_broadphase *bp, const pool_allocator *a, int i, const pool_segment *seg, int active,
                            double from, double to);
 
-/// Marks in bp->near every ball other than i with a piece near ball i's path over [now, horizon]
-/// (moving balls only when i does not translate) and returns their count. The marks must be
-/// taken with pool_broadphase_next_near, which clears them. When ball i's entries cover the
+/// Lists in bp->found, in index order, every ball other than i with a piece near ball i's path
+/// over [now, horizon] (moving balls only when i does not translate) and returns their count (the
+/// list holds until the next query). When ball i's entries cover the
 /// window (its segment was placed over [from, horizon] with from <= now: every search of the
 /// schedule), its own entries are the pieces looked from, without cutting its path again.
 int pool_broadphase_query(pool_broadphase *bp, int i, const pool_segment *seg, double now, double horizon);
-
-/// The next marked ball after `after` (-1 to start), clearing the marks it passes; -1 at the end.
-int pool_broadphase_next_near(pool_broadphase *bp, int after);
 
 /// Ball x's pending contact is now with `partner` (-1: none) instead of `old` (kept when watching).
 void pool_broadphase_repartner(pool_broadphase *bp, int x, int old, int partner);

@@ -267,10 +267,12 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, i
 	q.cluster_i = pool_link_cluster_of(&sim->link, i);
 	q.box_i = sim->reach[i].box;
 	if (grid) {
-		pool_broadphase_query(&sim->broad, i, &bi->seg, now, q.horizon_i);
-		for (int j = pool_broadphase_next_near(&sim->broad, -1); j >= 0; j = pool_broadphase_next_near(&sim->broad, j))
+		const int found = pool_broadphase_query(&sim->broad, i, &bi->seg, now, q.horizon_i);
+		for (int k = 0; k < found; ++k) {
+			const int j = sim->broad.found[k];
 			if ((sim->in_play[j >> 6] & pool_body_bit(j)) && (mi || (sim->moving[j >> 6] & pool_body_bit(j))))
 				try_pair(&q, j);
+		}
 		return q.partner;
 	}
 	const int n = sim->n, words = (n + 63) >> 6;
@@ -287,8 +289,9 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, i
 	return q.partner;
 }
 
-// Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
-static void repredict(pool_sim *sim, int i, double now) {
+// Body i's next event at time `now`, its own event or its earliest contact with another, in
+// *best (the partner lists follow its partner); the caller puts it in the queue.
+static void predict(pool_sim *sim, int i, double now, pool_event_key *out) {
 	POOL_ASSERT(i >= 0 && i < sim->n);
 	pool_body *bi = &sim->body[i];
 	pool_event_key best = {INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
@@ -312,6 +315,13 @@ static void repredict(pool_sim *sim, int i, double now) {
 	if (sim->broad.watching && partner != bi->partner)
 		pool_broadphase_repartner(&sim->broad, i, bi->partner, partner);
 	bi->partner = partner;
+	*out = best;
+}
+
+// Recomputes body i's slot at time `now`.
+static void repredict(pool_sim *sim, int i, double now) {
+	pool_event_key best;
+	predict(sim, i, now, &best);
 	pool_event_queue_update(&sim->queue, i, &best);
 }
 
@@ -320,19 +330,20 @@ void pool_schedule_predict_all(pool_sim *sim) {
 	sim->queue.heap = sim->heap;
 	sim->queue.pos = sim->hpos;
 	for (int i = 0; i < sim->n; ++i) {
-		sim->keys[i] = (pool_event_key){INFINITY, 0, sim->cur[i].id, sim->cur[i].id, i};
 		sim->body[i].partner = -1;
 		reach_box(sim, i); // max_time as this run has it
 	}
-	pool_event_queue_build(&sim->queue, sim->n);
 	if (pool_broadphase_begin(&sim->broad, &sim->alloc, &sim->def.table, sim->def.params.ball_radius, sim->n))
 		for (int i = 0; i < sim->n; ++i) {
 			const pool_body *b = &sim->body[i];
 			pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, b->seg.t0,
 			                      fmin(b->own_time, sim->def.max_time));
 		}
+	// Every slot's key, then the heap built over them at once (linear), rather than each key
+	// sifted in: the keys are the same, so is the order events come out in.
 	for (int i = 0; i < sim->n; ++i)
-		repredict(sim, i, sim->time);
+		predict(sim, i, sim->time, &sim->keys[i]);
+	pool_event_queue_build(&sim->queue, sim->n);
 	sim->predicted = 1;
 }
 

@@ -357,9 +357,8 @@ static void test_query_finds_every_near_ball(void **state) {
 			pool_broadphase_place(&bp, &a, 0, &seg[0], 1, from[0], to[0]);
 		const double now = from[0] + urand() * (to[0] - from[0]), horizon = to[0];
 		const int count = pool_broadphase_query(&bp, 0, &seg[0], now, horizon);
-		const int marked = pool_broadphase_next_near(&bp, -1) == 1;
-		assert_int_equal(pool_broadphase_next_near(&bp, 1), -1);
-		assert_int_equal(count, marked);
+		assert_true(count == 0 || (count == 1 && bp.found[0] == 1));
+		const int marked = count == 1;
 		// Only moving pairs, at common instants of the two windows.
 		if (!seg[0].model->translating && !seg[1].model->translating)
 			continue;
