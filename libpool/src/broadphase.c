@@ -111,11 +111,10 @@ static inline int cell_of(double x, double x0, double inv_cell, double last) {
 
 // The cells a widened box reaches.
 static inline void cells(const pool_broadphase *bp, const double box[4], int *cx0, int *cx1, int *cy0, int *cy1) {
-	const double last_x = bp->nx - 1, last_y = bp->ny - 1;
-	*cx0 = cell_of(box[0], bp->x0, bp->inv_cell, last_x);
-	*cx1 = cell_of(box[1], bp->x0, bp->inv_cell, last_x);
-	*cy0 = cell_of(box[2], bp->y0, bp->inv_cell, last_y);
-	*cy1 = cell_of(box[3], bp->y0, bp->inv_cell, last_y);
+	*cx0 = cell_of(box[0], bp->x0, bp->inv_cell, bp->last_x);
+	*cx1 = cell_of(box[1], bp->x0, bp->inv_cell, bp->last_x);
+	*cy0 = cell_of(box[2], bp->y0, bp->inv_cell, bp->last_y);
+	*cy1 = cell_of(box[3], bp->y0, bp->inv_cell, bp->last_y);
 }
 
 static inline int boxes_apart(const double a[4], const double b[4]) {
@@ -225,6 +224,8 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 	bp->x0 = bp->y0 = -cell;
 	bp->nx = nx;
 	bp->ny = ny;
+	bp->last_x = nx - 1;
+	bp->last_y = ny - 1;
 	for (int c = 0; c < nx * ny; ++c)
 		bp->head[c] = -1;
 	bp->used_entries = 0;

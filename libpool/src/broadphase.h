@@ -70,6 +70,7 @@ typedef struct pool_broadphase {
 	double inv_cell;           ///< 1 / cell
 	double x0, y0;             ///< m, corner of cell 0 (a cell's margin around the table)
 	int nx, ny;                ///< cells along x and y
+	double last_x, last_y;     ///< nx - 1 and ny - 1
 	int *head;                 ///< first entry of each cell (-1: empty), nx * ny
 	int cap_cells;
 	pool_broadphase_entry *entries;
