@@ -4,8 +4,9 @@
 // window (its path from the segment's start to its own next event: the only stretch of time the
 // pair search ever asks about) is cut into short pieces, each a box in the plane for an interval
 // of time, and filed in the cells of a uniform grid over the table. A query walks the cells of
-// the querying ball's own pieces over [now, horizon] and keeps the balls with a piece in one of
-// them at an overlapping time: a superset of those that can come within 2R of it then.
+// the querying ball's own pieces over [now, horizon] (its own entries: filed over a window that
+// holds that one) and keeps the balls with a piece in one of them at an overlapping time whose
+// box meets the querying piece's: a superset of those that can come within 2R of it then.
 //
 // The schedule then runs its unchanged pair loop over those balls in index order, so every pair
 // it predicts gets the same window and the same operands as in the all-pairs loop, and a pair
@@ -33,9 +34,10 @@ typedef enum pool_broadphase_mode {
 } pool_broadphase_mode;
 
 /// Ball count from which POOL_BROADPHASE_AUTO uses the grid. Measured in instructions per shot
-/// (pool-bench-scale under callgrind): on the racked break the grid costs 3 % more at 16 balls and
-/// 9 % more at 32, and 8 % less at 64; on the gas it costs less from 16 balls. A build with POOL_BROADPHASE_VERIFY (CMake option of
-/// the same name) uses it from 2 balls and checks every search against all pairs.
+/// (pool-bench-scale --models thesis under callgrind): the grid costs 12-15 % more at 16 and 32
+/// balls (racked break and gas), 2-4 % more at 48, 7 % less on the gas at 64 (4 % more on the
+/// break) and less from 96. A build with POOL_BROADPHASE_VERIFY (CMake option of the same name)
+/// uses it from 2 balls and checks every search against all pairs.
 #ifdef POOL_BROADPHASE_VERIFY
 #define POOL_BROADPHASE_MIN_BALLS 2
 #else
