@@ -62,14 +62,19 @@ typedef struct shot {
 	pool_strike strike;
 } shot;
 
-// Runs the shot with the given search; the run's result.
-static pool_result run(pool_sim *sim, const shot *s, pool_broadphase_mode mode) {
+// Sets the shot up with the given search, ready to run.
+static void start(pool_sim *sim, const shot *s, pool_broadphase_mode mode) {
 	assert_int_equal(pool_sim_reset(sim, &s->def, NULL), POOL_OK);
 	pool_schedule_set_broadphase(sim, mode);
 	for (int i = 0; i < s->n; ++i)
 		add_ball(sim, &s->balls[i]);
 	if (s->struck >= 0)
 		assert_int_equal(pool_sim_strike(sim, s->balls[s->struck].id, &s->strike, NULL), POOL_OK);
+}
+
+// Runs the shot with the given search; the run's result.
+static pool_result run(pool_sim *sim, const shot *s, pool_broadphase_mode mode) {
+	start(sim, s, mode);
 	return pool_sim_run(sim);
 }
 
@@ -281,41 +286,52 @@ static void rationed_free(void *p, void *ctx) {
 	free(p);
 }
 
-// Out of memory for the grid at the start of a shot (its cells, its entries) is no error: the
-// schedule goes back to all pairs and the shot's events are those of all pairs. (Mid-shot:
-// test_out_of_memory_mid_shot.)
-static void test_out_of_memory_falls_back(void **state) {
-	(void)state;
-	static shot s;
-	scale_shot("gas", 256, &s);
+// Runs the shot with the grid under an allocator that refuses every request after `allowed`
+// more, for each allowed in [0, max_allowed]: out of memory for the grid is no error, the schedule
+// goes back to all pairs and the shot's events must be those of all pairs. Counts the runs whose
+// grid was off after the first event (*at_start) and those whose grid turned off later (*mid_shot).
+static void rationed_runs(shot *s, long max_allowed, int *at_start, int *mid_shot) {
 	pool_sim_def def = pool_default_sim_def();
 	pool_sim *all = make_sim(&def);
-	assert_int_equal(run(all, &s, POOL_BROADPHASE_ALL_PAIRS), POOL_OK);
-	int turned_off = 0;
-	for (long allowed = 0; allowed <= 12; ++allowed) {
+	assert_int_equal(run(all, s, POOL_BROADPHASE_ALL_PAIRS), POOL_OK);
+	*at_start = *mid_shot = 0;
+	for (long allowed = 0; allowed <= max_allowed; ++allowed) {
 		rationed r = {0, 0};
-		s.def.allocator = (pool_allocator){rationed_alloc, rationed_free, &r};
-		pool_sim *sim = make_sim(&s.def);
+		s->def.allocator = (pool_allocator){rationed_alloc, rationed_free, &r};
+		pool_sim *sim = make_sim(&s->def);
 		// The history and LINK's arrays grow in a first run with all pairs; the grid's then
 		// allocates in the second, with `allowed` blocks left.
-		assert_int_equal(run(sim, &s, POOL_BROADPHASE_ALL_PAIRS), POOL_OK);
+		assert_int_equal(run(sim, s, POOL_BROADPHASE_ALL_PAIRS), POOL_OK);
+		start(sim, s, POOL_BROADPHASE_GRID);
 		r.armed = 1;
 		r.allowed = allowed;
-		assert_int_equal(run(sim, &s, POOL_BROADPHASE_GRID), POOL_OK);
-		turned_off += !sim->broad.on;
+		assert_int_equal(pool_sim_step(sim), 1); // the first prediction and the first event
+		const int on_after_first = sim->broad.on;
+		assert_int_equal(pool_sim_run(sim), POOL_OK);
+		*at_start += !on_after_first;
+		*mid_shot += on_after_first && !sim->broad.on;
 		assert_same(all, sim, "rationed", allowed);
 		r.armed = 0;
 		pool_sim_destroy(sim);
 	}
-	assert_true(turned_off >= 2); // the cells, then the entries refused
-	s.def.allocator = (pool_allocator){0};
+	s->def.allocator = (pool_allocator){0};
 	pool_sim_destroy(all);
 }
 
+// Out of memory at the start of a shot: the grid's cells, then its entries refused.
+static void test_out_of_memory_falls_back(void **state) {
+	(void)state;
+	static shot s;
+	scale_shot("gas", 256, &s);
+	int at_start, mid_shot;
+	rationed_runs(&s, 12, &at_start, &mid_shot);
+	assert_true(at_start >= 2);
+}
+
 // The grid turning off mid-shot (its entries cannot grow after the first prediction filed every
-// ball) hands the rest of the shot to all pairs with every reach box filed again: a crowd at rest
-// on a table of 16 standard areas, the cue ball struck hard into it, so that the balls it sets
-// moving file long paths. The events stay those of all pairs.
+// ball) hands the rest of the shot to all pairs with every reach box filed again: a crowd with
+// every other ball rolling on a table of 4 standard areas and the cue ball struck hard, so that
+// the balls set moving file long paths.
 static void test_out_of_memory_mid_shot(void **state) {
 	(void)state;
 	static shot s;
@@ -327,41 +343,17 @@ static void test_out_of_memory_mid_shot(void **state) {
 	while (s.n < 40 && add_random_ball(&s, 0.0) >= 0) {
 	}
 	const double R = s.def.params.ball_radius;
-	for (int i = 1; i < s.n; i += 2) { // every other ball rolling: more long paths as they collide
+	for (int i = 1; i < s.n; i += 2) {
 		const double v = 1.0 + 3.0 * urand(), a = 2.0 * M_PI * urand();
 		s.balls[i].vel = (pool_vec3){v * cos(a), v * sin(a), 0.0};
 		s.balls[i].omega = (pool_vec3){-s.balls[i].vel.y / R, s.balls[i].vel.x / R, 0.0};
 	}
 	s.struck = 0;
 	s.strike = (pool_strike){.speed = 8.0, .phi = 0.3, .a = 0.0, .b = 0.01};
-	pool_sim_def def = pool_default_sim_def();
-	pool_sim *all = make_sim(&def);
-	assert_int_equal(run(all, &s, POOL_BROADPHASE_ALL_PAIRS), POOL_OK);
-	int mid_shot = 0;
-	for (long allowed = 0; allowed <= 8; ++allowed) {
-		rationed r = {0, 0};
-		s.def.allocator = (pool_allocator){rationed_alloc, rationed_free, &r};
-		pool_sim *sim = make_sim(&s.def);
-		assert_int_equal(run(sim, &s, POOL_BROADPHASE_ALL_PAIRS), POOL_OK); // history, LINK: grown
-		assert_int_equal(pool_sim_reset(sim, &s.def, NULL), POOL_OK);
-		pool_schedule_set_broadphase(sim, POOL_BROADPHASE_GRID);
-		for (int i = 0; i < s.n; ++i)
-			add_ball(sim, &s.balls[i]);
-		assert_int_equal(pool_sim_strike(sim, s.balls[0].id, &s.strike, NULL), POOL_OK);
-		r.armed = 1;
-		r.allowed = allowed;
-		assert_int_equal(pool_sim_step(sim), 1); // the first prediction and the first event
-		const int on_after_first = sim->broad.on;
-		assert_int_equal(pool_sim_run(sim), POOL_OK);
-		mid_shot += on_after_first && !sim->broad.on;
-		assert_same(all, sim, "rationed mid-shot", allowed);
-		r.armed = 0;
-		pool_sim_destroy(sim);
-	}
+	int at_start, mid_shot;
+	rationed_runs(&s, 8, &at_start, &mid_shot);
 	printf("out of memory mid-shot: the grid turned off after the first event in %d of 9 runs\n", mid_shot);
 	assert_true(mid_shot >= 1);
-	s.def.allocator = (pool_allocator){0};
-	pool_sim_destroy(all);
 }
 
 // The geometry alone: ball j's segment filed over its window, ball i's path queried over another;
