@@ -7,8 +7,9 @@
 #include "memory.h"
 
 /// Side of a cell in ball radii: a piece of a path is at most one cell long, so its box (with a
-/// radius around it) covers at most 2 x 2 cells. 12 took the fewest instructions of 6, 8, 12, 16
-/// and 24 on the gas of pool-bench-scale at 256, 1,024 and 4,096 balls (within 10 % of each other).
+/// radius around it) covers 2 x 2 cells mostly, 3 x 3 at most. On the gas of pool-bench-scale
+/// (thesis) 12 and 16 took the fewest instructions of 8, 12, 16 and 24, within 0.5 % of each other
+/// at 256 and 1,024 balls (8: 5 % more, 24: 1-2 % more).
 #define CELL_RADII 12.0
 
 /// At most this many cells: a table far larger than the balls gets larger cells.
