@@ -4,8 +4,9 @@
 // window (its path from the segment's start to its own next event: the only stretch of time the
 // pair search ever asks about) is cut into short pieces, each a box in the plane for an interval
 // of time, and filed in the cells of a uniform grid over the table. A query walks the cells of
-// the querying ball's own pieces over [now, horizon] and keeps the balls with a piece in one of
-// them at an overlapping time: a superset of those that can come within 2R of it then.
+// the querying ball's own pieces over [now, horizon] (its own entries: filed over a window that
+// holds that one) and keeps the balls with a piece in one of them at an overlapping time whose
+// box meets the querying piece's: a superset of those that can come within 2R of it then.
 //
 // The schedule then runs its unchanged pair loop over those balls in index order, so every pair
 // it predicts gets the same window and the same operands as in the all-pairs loop, and a pair
@@ -33,9 +34,10 @@ typedef enum pool_broadphase_mode {
 } pool_broadphase_mode;
 
 /// Ball count from which POOL_BROADPHASE_AUTO uses the grid. Measured in instructions per shot
-/// (pool-bench-scale under callgrind): on the racked break the grid costs 3 % more at 16 balls and
-/// 9 % more at 32, and 8 % less at 64; on the gas it costs less from 16 balls. A build with POOL_BROADPHASE_VERIFY (CMake option of
-/// the same name) uses it from 2 balls and checks every search against all pairs.
+/// (pool-bench-scale --models thesis under callgrind): the grid costs 12-15 % more at 16 and 32
+/// balls (racked break and gas), 2-4 % more at 48, 7 % less on the gas at 64 (4 % more on the
+/// break) and less from 96. A build with POOL_BROADPHASE_VERIFY (CMake option of the same name)
+/// uses it from 2 balls and checks every search against all pairs.
 #ifdef POOL_BROADPHASE_VERIFY
 #define POOL_BROADPHASE_MIN_BALLS 2
 #else
@@ -50,7 +52,7 @@ typedef enum pool_broadphase_mode {
 /// At most this many pieces per segment (a longer path gets longer pieces, so bigger boxes).
 #define POOL_BROADPHASE_MAX_PIECES 64
 
-/// A piece of a ball's reach filed in one cell.
+/// A piece of a ball's reach filed in one cell (consecutive pieces in the same cell: one entry).
 typedef struct pool_broadphase_entry {
 	int body;          ///< the ball's index
 	int cell;          ///< the cell it is filed in
@@ -58,6 +60,7 @@ typedef struct pool_broadphase_entry {
 	int next_own;      ///< the ball's next entry (-1: none); also the free list's link
 	int moving;        ///< the ball translates in this segment
 	double from, to;   ///< s, absolute: the piece's time interval
+	double box[4];     ///< m, x_lo, x_hi, y_lo, y_hi: where the centre stays then, widened by `radius`
 } pool_broadphase_entry;
 
 /// The grid, the entries, and the reverse partner lists.
@@ -69,14 +72,16 @@ typedef struct pool_broadphase {
 	double inv_cell;           ///< 1 / cell
 	double x0, y0;             ///< m, corner of cell 0 (a cell's margin around the table)
 	int nx, ny;                ///< cells along x and y
+	double last_x, last_y;     ///< nx - 1 and ny - 1
 	int *head;                 ///< first entry of each cell (-1: empty), nx * ny
 	int cap_cells;
 	pool_broadphase_entry *entries;
 	int cap_entries, used_entries; ///< entries allocated, and handed out at least once
 	int free_entry;                ///< first free entry (-1: none)
 	int *own;                  ///< first entry of each ball (-1: none)
-	uint64_t *near;            ///< candidate bits of a query, one per ball
-	int near_lo, near_hi;      ///< words of `near` a query may have marked
+	double *filed;             ///< s, the window [from, to] each ball's entries cover, two per ball
+	uint64_t *near;            ///< a query's marks, one bit per ball (all clear between queries)
+	int *found;                ///< the balls a query found, in index order
 	int watching;              ///< the partner lists are kept for this shot
 	int *watch_first, *watch_next, *watch_prev; ///< balls whose partner is a ball (-1 ends)
 	int cap_balls;
@@ -97,13 +102,12 @@ int pool_broadphase_begin(pool_broadphase *bp, const pool_allocator *a, const po
 void pool_broadphase_place(pool_broadphase *bp, const pool_allocator *a, int i, const pool_segment *seg, int active,
                            double from, double to);
 
-/// Marks in bp->near every ball other than i with a piece near ball i's path over [now, horizon]
-/// (moving balls only when i does not translate) and returns their count. The marks must be
-/// taken with pool_broadphase_next_near, which clears them.
+/// Lists in bp->found, in index order, every ball other than i with a piece near ball i's path
+/// over [now, horizon] (moving balls only when i does not translate) and returns their count (the
+/// list holds until the next query). When ball i's entries cover the
+/// window (its segment was placed over [from, horizon] with from <= now: every search of the
+/// schedule), its own entries are the pieces looked from, without cutting its path again.
 int pool_broadphase_query(pool_broadphase *bp, int i, const pool_segment *seg, double now, double horizon);
-
-/// The next marked ball after `after` (-1 to start), clearing the marks it passes; -1 at the end.
-int pool_broadphase_next_near(pool_broadphase *bp, int after);
 
 /// Ball x's pending contact is now with `partner` (-1: none) instead of `old` (kept when watching).
 void pool_broadphase_repartner(pool_broadphase *bp, int x, int old, int partner);

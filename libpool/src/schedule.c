@@ -144,6 +144,9 @@ static void begin_own(pool_sim *sim, int i, const pool_ball_state *s, double t) 
 // earlier of the two bodies' own events and at max_time), so a pair whose boxes are apart is one
 // the pair loop's narrow phase would reject: the box test leaves the events the same to the bit.
 // The margin covers the touching band and the rounding of the paths, as the broadphase's pieces.
+// While the grid is on only the flags are kept: its pieces' boxes already leave out every pair the
+// reach boxes would (and finer), and should it turn off mid-shot every box is filed again at once
+// (boxes_again).
 static void reach_box(pool_sim *sim, int i) {
 	const pool_body *b = &sim->body[i];
 	const pool_segment *seg = &b->seg;
@@ -152,6 +155,8 @@ static void reach_box(pool_sim *sim, int i) {
 	const uint64_t bit = pool_body_bit(i);
 	sim->in_play[i >> 6] = b->active ? sim->in_play[i >> 6] | bit : sim->in_play[i >> 6] & ~bit;
 	sim->moving[i >> 6] = seg->model->translating ? sim->moving[i >> 6] | bit : sim->moving[i >> 6] & ~bit;
+	if (sim->broad.on)
+		return;
 	const double widen = sim->def.params.ball_radius + POOL_BROADPHASE_MARGIN;
 	// The window's end as the pair loop takes it (max_time were own_time NaN), and the path's.
 	const double end = b->own_time < sim->def.max_time ? b->own_time : sim->def.max_time;
@@ -176,6 +181,13 @@ static void reach_box(pool_sim *sim, int i) {
 	box[3] += widen;
 }
 
+// The grid has just turned off (out of memory, an endless window): every body's reach box, which
+// the all-pairs loop now reads and reach_box left alone while the grid was on.
+static void boxes_again(pool_sim *sim) {
+	for (int j = 0; j < sim->n; ++j)
+		reach_box(sim, j);
+}
+
 // 1 when two reach boxes are apart (the balls cannot meet: reach_box).
 static inline int reach_apart(const double *a, const double *b) {
 	return a[0] > b[1] || b[0] > a[1] || a[2] > b[3] || b[2] > a[3];
@@ -191,11 +203,14 @@ void pool_schedule_begin_segment(pool_sim *sim, int i, const pool_ball_state *s,
 	// The broadphase files the segment's reach up to its own next event: no pair search looks
 	// further (a window ends at the earlier of the two bodies' own events, and at max_time).
 	const pool_body *b = &sim->body[i];
-	if (sim->broad.on)
+	if (sim->broad.on) {
 		pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, t, fmin(b->own_time, sim->def.max_time));
+		if (!sim->broad.on)
+			boxes_again(sim);
+	}
 }
 
-// What a contact search of body i knows before it looks at other bodies (earliest_contact).
+// What a contact search of body i knows before it looks at other bodies (search_of).
 typedef struct search {
 	pool_sim *sim;
 	int i;
@@ -249,30 +264,27 @@ static inline void try_pair(search *q, int j) {
 	}
 }
 
-// Body i's earliest contact at `now` with another body, if it comes before *best (its own
-// event): *best becomes it, and the other body is returned (-1: none). grid: only the
-// broadphase's candidates, in index order; else every body in play (moving ones when body i
-// does not move), taken a word of the bit sets at a time, in index order. boxes: bodies whose
-// reach boxes are apart are left out at once. The same pairs in the same order either way: the
-// broadphase and the boxes only leave out bodies that cannot come within reach over the window
-// (broadphase.h, reach_box).
-static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, int boxes, pool_event_key *best) {
+// A contact search of body i at `now` whose earliest event so far is *best (search).
+static inline search search_of(pool_sim *sim, int i, double now, int boxes, pool_event_key *best) {
 	const pool_body *bi = &sim->body[i];
 	search q = {.sim = sim, .i = i, .now = now, .boxes = boxes, .best = best, .partner = -1};
 	// Both paths as polynomials in (t - now), from the segments' own polynomial.
 	pool_segment_path(&bi->seg, now - bi->seg.t0, &q.pi, &q.vi);
 	q.ai = bi->seg.acc;
-	const int mi = bi->seg.model->translating;
 	q.horizon_i = pool_earlier(sim->def.max_time, bi->own_time); // as fmin, were own_time NaN
 	q.cluster_i = pool_link_cluster_of(&sim->link, i);
 	q.box_i = sim->reach[i].box;
-	if (grid) {
-		pool_broadphase_query(&sim->broad, i, &bi->seg, now, q.horizon_i);
-		for (int j = pool_broadphase_next_near(&sim->broad, -1); j >= 0; j = pool_broadphase_next_near(&sim->broad, j))
-			if ((sim->in_play[j >> 6] & pool_body_bit(j)) && (mi || (sim->moving[j >> 6] & pool_body_bit(j))))
-				try_pair(&q, j);
-		return q.partner;
-	}
+	return q;
+}
+
+// Body i's earliest contact at `now` with another body, if it comes before *best (its own
+// event): *best becomes it, and the other body is returned (-1: none). Every body in play
+// (moving ones when body i does not move), taken a word of the bit sets at a time, in index
+// order; boxes: bodies whose reach boxes are apart left out at once (they cannot come within
+// reach over the window: reach_box), the same pairs otherwise in the same order.
+static int contact_all_pairs(pool_sim *sim, int i, double now, int boxes, pool_event_key *best) {
+	search q = search_of(sim, i, now, boxes, best);
+	const int mi = sim->body[i].seg.model->translating;
 	const int n = sim->n, words = (n + 63) >> 6;
 	for (int w = 0; w < words; ++w) {
 		// A body in play other than i; when body i does not move, one that does.
@@ -287,8 +299,25 @@ static inline int earliest_contact(pool_sim *sim, int i, double now, int grid, i
 	return q.partner;
 }
 
-// Recomputes body i's slot at time `now`: its own event or its earliest contact with another.
-static void repredict(pool_sim *sim, int i, double now) {
+// contact_all_pairs over the broadphase's candidates only, in index order, without the reach
+// boxes (the grid's pieces leave out every pair they would, and finer): it leaves out only bodies
+// that cannot come within reach over the window (broadphase.h), the same pairs otherwise.
+static int contact_grid(pool_sim *sim, int i, double now, pool_event_key *best) {
+	search q = search_of(sim, i, now, 0, best);
+	const pool_body *bi = &sim->body[i];
+	const int mi = bi->seg.model->translating;
+	const int found = pool_broadphase_query(&sim->broad, i, &bi->seg, now, q.horizon_i);
+	for (int k = 0; k < found; ++k) {
+		const int j = sim->broad.found[k];
+		if ((sim->in_play[j >> 6] & pool_body_bit(j)) && (mi || (sim->moving[j >> 6] & pool_body_bit(j))))
+			try_pair(&q, j);
+	}
+	return q.partner;
+}
+
+// Body i's next event at time `now`, its own event or its earliest contact with another, in
+// *best (the partner lists follow its partner); the caller puts it in the queue.
+static void predict(pool_sim *sim, int i, double now, pool_event_key *out) {
 	POOL_ASSERT(i >= 0 && i < sim->n);
 	pool_body *bi = &sim->body[i];
 	pool_event_key best = {INFINITY, POOL_EVENT_SPIN_STOP, sim->cur[i].id, sim->cur[i].id, i};
@@ -301,17 +330,24 @@ static void repredict(pool_sim *sim, int i, double now) {
 		// The verification build: the answer of the grid and the boxes must be that of every
 		// pair without them, to the bit.
 		pool_event_key all = best;
-		const int all_partner = earliest_contact(sim, i, now, 0, 0, &all);
-		partner = earliest_contact(sim, i, now, grid, 1, &best);
+		const int all_partner = contact_all_pairs(sim, i, now, 0, &all);
+		partner = grid ? contact_grid(sim, i, now, &best) : contact_all_pairs(sim, i, now, 1, &best);
 		if (memcmp(&all, &best, sizeof best) != 0 || all_partner != partner)
 			abort();
 #else
-		partner = earliest_contact(sim, i, now, grid, 1, &best);
+		partner = grid ? contact_grid(sim, i, now, &best) : contact_all_pairs(sim, i, now, 1, &best);
 #endif
 	}
 	if (sim->broad.watching && partner != bi->partner)
 		pool_broadphase_repartner(&sim->broad, i, bi->partner, partner);
 	bi->partner = partner;
+	*out = best;
+}
+
+// Recomputes body i's slot at time `now`.
+static void repredict(pool_sim *sim, int i, double now) {
+	pool_event_key best;
+	predict(sim, i, now, &best);
 	pool_event_queue_update(&sim->queue, i, &best);
 }
 
@@ -319,20 +355,25 @@ void pool_schedule_predict_all(pool_sim *sim) {
 	sim->queue.keys = sim->keys;
 	sim->queue.heap = sim->heap;
 	sim->queue.pos = sim->hpos;
+	const int grid = pool_broadphase_begin(&sim->broad, &sim->alloc, &sim->def.table, sim->def.params.ball_radius, sim->n);
 	for (int i = 0; i < sim->n; ++i) {
-		sim->keys[i] = (pool_event_key){INFINITY, 0, sim->cur[i].id, sim->cur[i].id, i};
 		sim->body[i].partner = -1;
 		reach_box(sim, i); // max_time as this run has it
 	}
-	pool_event_queue_build(&sim->queue, sim->n);
-	if (pool_broadphase_begin(&sim->broad, &sim->alloc, &sim->def.table, sim->def.params.ball_radius, sim->n))
-		for (int i = 0; i < sim->n; ++i) {
+	if (grid) {
+		for (int i = 0; i < sim->n && sim->broad.on; ++i) {
 			const pool_body *b = &sim->body[i];
 			pool_broadphase_place(&sim->broad, &sim->alloc, i, &b->seg, b->active, b->seg.t0,
 			                      fmin(b->own_time, sim->def.max_time));
 		}
+		if (!sim->broad.on)
+			boxes_again(sim);
+	}
+	// Every slot's key, then the heap built over them at once (linear), rather than each key
+	// sifted in: the keys are the same, so is the order events come out in.
 	for (int i = 0; i < sim->n; ++i)
-		repredict(sim, i, sim->time);
+		predict(sim, i, sim->time, &sim->keys[i]);
+	pool_event_queue_build(&sim->queue, sim->n);
 	sim->predicted = 1;
 }
 
