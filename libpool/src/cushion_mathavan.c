@@ -125,6 +125,9 @@ static void cloth_slip(const double *y, double out[2]) {
 }
 static double dot2(const double a[2], const double b[2]) { return a[0] * b[0] + a[1] * b[1]; }
 static double sq(double x) { return x * x; }
+// fmin and fmax for the step control without their library calls (a NaN x gives the bound).
+static double at_most(double x, double bound) { return x < bound ? x : bound; }
+static double at_least(double x, double bound) { return x > bound ? x : bound; }
 
 // log2 x (x > 0) and 2^y for the step control, to about 1e-3 relative, by polynomials of the
 // double's mantissa and exponent read and written in its bits where x and the result are normal
@@ -566,19 +569,26 @@ static bool event_active(const impact *im, event ev) {
 // and 1 (g1 <= 0): the Illinois variant of regula falsi, to the last bits of theta.
 static double locate(const impact *im, const phase *ph, event ev, const pool_dopri5_step *st, double g0, double g1) {
 	double lo = 0.0, hi = 1.0, glo = g0, ghi = g1, y[DIM];
-	const double small = 1e-14 * fmax(g0, -g1);
+	const double small = 1e-14 * (g0 > -g1 ? g0 : -g1);
 	int side = 0;
+	pool_dopri5_linear end = {0.0, 0.0, 0.0, 0.0, 0.0}; // the end's function: linear in the state
+	if (ev == EV_END) {
+		double w[DIM] = {0.0};
+		if (ph->restitution)
+			w[WORK] = 1.0;
+		else
+			w[VY] = im->k.c, w[VZ] = im->k.s;
+		end = pool_dopri5_linear_of(st, w);
+		if (ph->restitution)
+			end.y0 -= ph->work_end;
+	}
 	for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
 		double t = (lo * ghi - hi * glo) / (ghi - glo);
 		if (!(t > lo && t < hi))
 			t = 0.5 * (lo + hi);
 		double g;
-		if (ev == EV_END) { // only what the end's function reads
-			if (ph->restitution) {
-				g = pool_dopri5_dense_one(st, t, WORK) - ph->work_end;
-			} else {
-				g = im->k.c * pool_dopri5_dense_one(st, t, VY) + im->k.s * pool_dopri5_dense_one(st, t, VZ);
-			}
+		if (ev == EV_END) {
+			g = pool_dopri5_linear_at(&end, t);
 		} else {
 			pool_dopri5_dense(st, t, y);
 			g = event_value(im, ph, ev, y);
@@ -895,19 +905,18 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 		double err = 0.0;
 		for (int i = 0; i < DIM; ++i) {
 			const double e_i = fabs(step.err[i]) * inv_atol[i];
-			if (e_i > err) // (fmax is a library call)
-				err = e_i;
+			err = at_least(e_i, err);
 		}
 		// Step control (Hairer's for DOPRI5: the error's trend from the last accepted step
 		// damps the growth; no growth right after a rejection).
-		const double log_err = log2_approx(fmax(err, 1e-10));
-		const double grow = fmin(5.0, fmax(0.1, 0.9 * exp2_approx(-0.17 * log_err + 0.04 * log_err_last)));
+		const double log_err = log2_approx(at_least(err, 1e-10));
+		const double grow = at_most(at_least(0.9 * exp2_approx(-0.17 * log_err + 0.04 * log_err_last), 0.1), 5.0);
 		if (err > 1.0 && hs > 1e-12 * frictionless) {
-			h = hs * fmin(grow, 1.0);
+			h = hs * at_most(grow, 1.0);
 			rejected = true;
 			continue;
 		}
-		log_err_last = log2_approx(fmax(err, 1e-4));
+		log_err_last = log2_approx(at_least(err, 1e-4));
 		// The earliest event inside the step.
 		event first = EV_COUNT;
 		double theta = 2.0;
@@ -938,10 +947,11 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 				k1[i] = step.k[6][i];
 			}
 			if (hs == h) {
-				double next = rejected ? fmin(grow, 1.0) : grow;
+				double next = rejected ? at_most(grow, 1.0) : grow;
 				if (h_accepted > 0.0) // Gustafsson's predictive control (see PREDICTIVE)
-					next = fmin(next, fmax(0.1, hs / h_accepted * 0.9 *
-					                                    exp2_approx(PREDICTIVE * (log_err_accepted - 2.0 * log_err))));
+					next = at_most(next, at_least(hs / h_accepted * 0.9 *
+					                                      exp2_approx(PREDICTIVE * (log_err_accepted - 2.0 * log_err)),
+					                              0.1));
 				h = hs * next;
 			}
 			h_accepted = hs;

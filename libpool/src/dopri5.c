@@ -61,3 +61,23 @@ void pool_dopri5_dense(const pool_dopri5_step *st, double theta, double *y) {
 	for (int i = 0; i < POOL_DOPRI5_DIM; ++i)
 		y[i] = pool_dopri5_dense_one(st, theta, i);
 }
+
+pool_dopri5_linear pool_dopri5_linear_of(const pool_dopri5_step *st, const double *w) {
+	pool_dopri5_linear l = {0.0, 0.0, 0.0, 0.0, 0.0};
+	const double h = st->h;
+	for (int i = 0; i < POOL_DOPRI5_DIM; ++i) {
+		if (w[i] == 0.0)
+			continue;
+		const double dy = st->y1[i] - st->y0[i];
+		const double r3 = h * st->k[0][i] - dy;
+		const double r4 = dy - h * st->k[6][i] - r3;
+		const double r5 = h * (d1 * st->k[0][i] + d3 * st->k[2][i] + d4 * st->k[3][i] + d5 * st->k[4][i] +
+		                       d6 * st->k[5][i] + d7 * st->k[6][i]);
+		l.y0 += w[i] * st->y0[i];
+		l.dy += w[i] * dy;
+		l.r3 += w[i] * r3;
+		l.r4 += w[i] * r4;
+		l.r5 += w[i] * r5;
+	}
+	return l;
+}
