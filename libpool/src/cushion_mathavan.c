@@ -776,6 +776,19 @@ static double landing(impact *im, const double *y, int i, const double s[2], dou
 	return det != 0.0 && lambda > 0.0 && dot2(dir, s) > 0.0 ? n / lambda : INFINITY;
 }
 
+// Both contacts slide on the cloth, neither slip is zero, and the cloth still presses: the modes
+// decide_modes takes first (the main loop turns each sliding direction to its slip every step).
+static bool still_sliding(const impact *im, const double *y) {
+	const modes *m = &im->m;
+	if (m->airborne || m->nose_stuck || m->cloth_stuck)
+		return false;
+	double si[2], sc[2];
+	nose_slip(&im->k, y, si);
+	cloth_slip(y, sc);
+	const double ni = dot2(si, si), z2 = im->zero * im->zero;
+	return ni > z2 && dot2(sc, sc) > z2 && im->k.s + im->k.c * im->k.mu_i * si[1] / sqrt(ni) >= 0.0;
+}
+
 // At the end of compression (ż'_I = 0): restitution starts, to give back e² of the work; a slip
 // reaching zero there too (a stuck nose makes the cloth's slip (1 + s) v_y in a head-on impact)
 // is decided. True at the end of restitution (the impact is over).
@@ -787,7 +800,8 @@ static bool end_of_phase(impact *im, phase *ph, double *y, double e) {
 	ph->work_end = (1.0 - e * e) * y[WORK];
 	if (!(y[WORK] > ph->work_end))
 		return true; // e = 0: nothing given back
-	modes_after(im, y, EV_COUNT);
+	if (!still_sliding(im, y)) // (else Coulomb's law decides what it decided before)
+		modes_after(im, y, EV_COUNT);
 	return false;
 }
 
@@ -855,6 +869,12 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			if (!(reach < hs))
 				continue;
 			const double keep[2] = {dir[0], dir[1]};
+			if (i == NOSE && sliding(&im.m, CLOTH)) { // the landing holds the cloth's direction at y
+				double sc[2];
+				cloth_slip(y, sc);
+				if (dot2(sc, sc) > im.zero * im.zero)
+					unit_or_keep(sc, im.m.cloth_dir);
+			}
 			const double d = landing(&im, y, i, sl, kl);
 			if (d < hs) {
 				hs = d;
@@ -863,12 +883,6 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			} else {
 				dir[0] = keep[0], dir[1] = keep[1];
 			}
-		}
-		if (lands != 1 && sliding(&im.m, CLOTH)) { // the nose lands: the cloth's own direction
-			double sl[2];
-			cloth_slip(y, sl);
-			if (dot2(sl, sl) > im.zero * im.zero)
-				unit_or_keep(sl, im.m.cloth_dir);
 		}
 		// A sliding contact whose slip the step would turn over many times (its friction's turn
 		// rate, about 7/2 mu N / |slip|, times the step above QUASI) follows its slow manifold: the
