@@ -90,9 +90,13 @@
 /// normal impulse of the frictionless impact.
 #define JAM_IMPULSES 8.0
 
-// The state: v, u = R ω, W, and PAD, which fills the integrator's vectors (always 0).
-enum { VX, VY, VZ, UX, UY, UZ, WORK, PAD, DIM };
+// The state: v, u = R ω, W, and PAD, which fills the integrator's vectors (always 0). v_z, which
+// moves only while the ball is off the cloth, comes after what always moves: steps on the cloth
+// integrate the leading components alone (pool_dopri5_take_lead).
+enum { VX, VY, UX, UY, UZ, WORK, VZ, PAD, DIM };
 _Static_assert(DIM == POOL_DOPRI5_DIM, "the state fills the integrator's vectors");
+_Static_assert(WORK < POOL_DOPRI5_LEAD && VZ >= POOL_DOPRI5_LEAD && PAD >= POOL_DOPRI5_LEAD,
+               "on the cloth the leading components are those that move");
 enum { NOSE, CLOTH };
 
 typedef struct law {
@@ -819,9 +823,10 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 	const pool_vec3 ey = pool_v3_scale(nh, -1.0 / c), ez = pool_v3(0.0, 0.0, 1.0);
 	const pool_vec3 ex = pool_v3_cross(ey, ez);
 	const double R = p->ball_radius;
-	double y[DIM] = {pool_v3_dot(st->vel, ex),         pool_v3_dot(st->vel, ey),         pool_v3_dot(st->vel, ez),
-	                 R * pool_v3_dot(st->omega, ex), R * pool_v3_dot(st->omega, ey), R * pool_v3_dot(st->omega, ez),
-	                 0.0, 0.0};
+	double y[DIM] = {0.0};
+	y[VX] = pool_v3_dot(st->vel, ex), y[VY] = pool_v3_dot(st->vel, ey), y[VZ] = pool_v3_dot(st->vel, ez);
+	y[UX] = R * pool_v3_dot(st->omega, ex), y[UY] = R * pool_v3_dot(st->omega, ey);
+	y[UZ] = R * pool_v3_dot(st->omega, ez);
 	impact im = {{c, -n.z, p->mu_cushion_mathavan, p->mu_table}, {0}, 0.0, 0};
 	const double z0 = im.k.c * y[VY] + im.k.s * y[VZ];
 	if (!(z0 > 0.0))
@@ -829,8 +834,9 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 	if (y[VZ] < 0.0)
 		y[VZ] = 0.0; // a ball on the cloth does not move into it
 	double scale = 0.0; // the speed scale: errors and zero slips are measured against it
-	for (int i = 0; i < UZ + 1; ++i)
-		scale = fmax(scale, fabs(y[i]));
+	for (int i = 0; i < DIM; ++i)
+		if (i != WORK && i != PAD)
+			scale = fmax(scale, fabs(y[i]));
 	im.zero = ZERO_SLIP * scale;
 	double inv_atol[DIM]; // the error's weights: 1 / (tolerance times each component's scale)
 	for (int i = 0; i < DIM; ++i)
@@ -920,7 +926,10 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 			if (im.m.nose_quasi || im.m.cloth_quasi)
 				derivative(&im, y, k1);
 		}
-		pool_dopri5_take(both_sliding(&im) ? derivative_sliding : derivative, &im, y, k1, hs, &step);
+		if (im.m.airborne)
+			pool_dopri5_take(derivative, &im, y, k1, hs, &step);
+		else // v_z stays zero
+			pool_dopri5_take_lead(both_sliding(&im) ? derivative_sliding : derivative, &im, y, k1, hs, &step);
 		double err = 0.0;
 		for (int i = 0; i < DIM; ++i) {
 			const double e_i = fabs(step.err[i]) * inv_atol[i];
