@@ -841,7 +841,8 @@ pool_mathavan_outcome pool_cushion_mathavan(pool_ball_state *st, const pool_para
 	for (int i = 0; i < DIM; ++i)
 		inv_atol[i] = i == PAD ? 0.0 : 1.0 / (tolerance * scale * (i == WORK ? z0 : 1.0));
 	const double e = p->e_cushion_mathavan, frictionless = (1.0 + e) * z0 / (c * c);
-	modes_after(&im, y, EV_COUNT);
+	if (!still_sliding(&im, y)) // (else the modes all-sliding start with, as decide_modes would)
+		modes_after(&im, y, EV_COUNT);
 	phase ph = {false, 0.0};
 	// The first step: about what the control settles on for smooth impacts.
 	double h = FIRST_STEP * exp2_approx(0.2 * log2_approx(tolerance)) * frictionless;
