@@ -788,7 +788,7 @@ static double landing(impact *im, const double *y, int i, const double s[2], dou
 // decide_modes takes first (the main loop turns each sliding direction to its slip every step).
 static bool still_sliding(const impact *im, const double *y) {
 	const modes *m = &im->m;
-	if (m->airborne || m->nose_stuck || m->cloth_stuck)
+	if (m->airborne || m->nose_stuck || m->cloth_stuck || y[VZ] > 0.0) // (rising: decide_modes lifts it)
 		return false;
 	double si[2], sc[2];
 	nose_slip(&im->k, y, si);
