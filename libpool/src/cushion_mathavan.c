@@ -322,11 +322,12 @@ static void derivative(const void *ctx, const double *y, double *dy) {
 }
 
 // The same while both contacts slide on the cloth and neither is held (both_sliding): the
-// common case, without the modes' tests (contact_forces' first branch and derivative_of).
+// common case, without the modes' tests (contact_forces' first branch and derivative_of), and
+// without v_z, zero on the cloth.
 static void derivative_sliding(const void *ctx, const double *y, double *dy) {
 	const impact *im = ctx;
 	const law *k = &im->k;
-	const double si[2] = {y[VX] + k->s * y[UY] - k->c * y[UZ], -k->s * y[VY] + k->c * y[VZ] + y[UX]};
+	const double si[2] = {y[VX] + k->s * y[UY] - k->c * y[UZ], -k->s * y[VY] + y[UX]};
 	const double sc[2] = {y[VX] - y[UY], y[VY] + y[UX]};
 	const double ni = dot2(si, si), nc = dot2(sc, sc), z2 = im->zero * im->zero;
 	if (!(ni > z2 && nc > z2)) {
@@ -344,7 +345,7 @@ static void derivative_sliding(const void *ctx, const double *y, double *dy) {
 	dy[UX] = 2.5 * (f[1] + g[1]);
 	dy[UY] = 2.5 * (k->s * f[0] - g[0]);
 	dy[UZ] = -2.5 * k->c * f[0];
-	dy[WORK] = k->c * y[VY] + k->s * y[VZ];
+	dy[WORK] = k->c * y[VY];
 	dy[PAD] = 0.0;
 }
 
