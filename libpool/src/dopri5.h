@@ -26,10 +26,33 @@ typedef struct pool_dopri5_step {
 void pool_dopri5_take(pool_dopri5_rhs f, const void *ctx, const double *y0, const double *k1, double h,
                       pool_dopri5_step *step);
 
+/// The leading components a system integrates while its others stand still (their slope zero).
+#define POOL_DOPRI5_LEAD 6
+
+/// pool_dopri5_take where the slope of the components past POOL_DOPRI5_LEAD is zero: those keep
+/// y0's values (and a zero slope and error) at about three quarters of the arithmetic.
+void pool_dopri5_take_lead(pool_dopri5_rhs f, const void *ctx, const double *y0, const double *k1, double h,
+                           pool_dopri5_step *step);
+
 /// The solution at x0 + theta h, 0 <= theta <= 1 (order 4, continuous with both ends).
 void pool_dopri5_dense(const pool_dopri5_step *step, double theta, double *y);
 
 /// Component i of the solution at x0 + theta h.
 double pool_dopri5_dense_one(const pool_dopri5_step *step, double theta, int i);
+
+/// A linear combination w . y of the dense output, as a polynomial in theta: evaluated by
+/// pool_dopri5_linear_at at a few operations a point instead of one dense output per component.
+typedef struct pool_dopri5_linear {
+	double y0, dy, r3, r4, r5;
+} pool_dopri5_linear;
+
+/// The combination w . y of the step's dense output (w: POOL_DOPRI5_DIM weights).
+pool_dopri5_linear pool_dopri5_linear_of(const pool_dopri5_step *step, const double *w);
+
+/// w . y at x0 + theta h (the same expression as pool_dopri5_dense_one, on the combined terms).
+static inline double pool_dopri5_linear_at(const pool_dopri5_linear *l, double theta) {
+	const double t1 = 1.0 - theta;
+	return l->y0 + theta * (l->dy + t1 * (l->r3 + theta * (l->r4 + t1 * l->r5)));
+}
 
 #endif
