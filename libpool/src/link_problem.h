@@ -29,6 +29,8 @@ typedef struct link_contact {
 	pool_vec3 n;      ///< unit normal, towards ball a
 	pool_vec3 ra, rb; ///< from each centre to the contact point
 	double gap;       ///< m, distance between the surfaces (< 0: penetration)
+	double bend;      ///< m, the most the linearised gap can overstate the true one at the step's
+	                  ///< end (a jaw's arc seen from its concave side, link_step.c); else 0
 	double mu;        ///< friction of the pair
 } link_contact;
 

@@ -101,6 +101,7 @@ typedef struct link_scene {
 	int n;
 	int planar;
 	double reach;   ///< m, the most a ball's centre can move in the step (speed bound x dt)
+	double dt;      ///< s, the step
 } link_scene;
 
 static pool_vec3 centre(const link_scene *sc, int k) {
@@ -125,9 +126,42 @@ static int put_contact(link_contact *out, int count, link_kind kind, int a, int 
 		c->ra = kind == LINK_CLOTH ? pool_v3(0.0, 0.0, -R) : pool_v3_scale(n, -R); // (no -0.0 on the cloth)
 		c->rb = b >= 0 ? pool_v3_scale(n, R) : pool_v3(0.0, 0.0, 0.0);
 		c->gap = gap;
+		c->bend = 0.0;
 		c->mu = mu;
 	}
 	return count + 1;
+}
+
+// How much the linearised gap gap + n'dp of ball b against part k of the nose curve can overstate
+// its true gap at the step's end (m; 0 for a line). The distance from a point to a straight part
+// is convex, so its tangent plane is a lower bound (the top of the file). A jaw's arc is convex
+// only from outside its circle: with the centre horizontally at rho < r from the arc's axis (a
+// ball riding the top of the cushion over a jaw), moving along the arc brings the centre nearer
+// the circle, and the plane lets it sink into the nose curve by s^2/2 times the distance's most
+// negative curvature, (r - rho) / (d rho) (d = |p - q|: the Hessian's part (rho - r)/d times
+// rho's, 1/rho along the arc), s the centre's move along the arc. Soak seed 49, mouth shot 27112:
+// a ball linked on the cushion's top 3 mm inside a corner jaw's circle, moving at 0.6 m/s, sank
+// 0.6 um a step, 7 um deep after 16 steps, which the capped correction (POOL_LINK_PUSH_SPEED)
+// could not undo. s is the ball's own speed along the arc at the step's start plus g dt (what
+// contacts pressing with about its weight change in a step), not the cluster's speed bound: that
+// counts the spin's energy too, and lifting the ball by a bend three times too large would open
+// the contact beyond POOL_LINK_TOUCH_GAP every step. (rho, d and r - rho are taken at their worst
+// over a move of that speed.) Never more than 2 s (the distance and its plane each change by at
+// most s).
+static double arc_bend(const link_scene *sc, int k, const pool_ball_state *b, pool_vec3 pa, double d, double dt) {
+	const pool_nose_part *np = &sc->shape->parts[k];
+	if (np->kind != POOL_NOSE_ARC)
+		return 0.0;
+	const double ex = pa.x - np->ax, ey = pa.y - np->ay, rho = hypot(ex, ey), inside = np->length - rho;
+	if (!(inside > 0.0 && rho > 0.0))
+		return inside > 0.0 ? sc->reach : 0.0; // outside the circle: convex
+	const double slack = sc->def->params.g * dt;
+	const double along = fabs(b->vel.x * ey - b->vel.y * ex) / rho + slack;        // m/s, along the arc
+	const double move = (hypot(b->vel.x, b->vel.y) + slack) * dt, s = along * dt; // m
+	const double rho_min = rho - move, d_min = d - move - fabs(b->vel.z) * dt;
+	if (!(rho_min > 0.0 && d_min > 0.0))
+		return 2.0 * move;
+	return fmin(0.5 * s * s * (inside + move) / (d_min * rho_min), 2.0 * move);
 }
 
 // Finds the contacts (into out when not NULL) and returns their count; the same order every
@@ -150,9 +184,12 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				continue;
 			const pool_vec3 q = pool_shape_nearest(sc->shape, k, pa);
 			const double gap = pool_v3_len(pool_v3_sub(pa, q)) - R;
-			if (gap < sc->reach + POOL_LINK_MARGIN)
+			if (gap < sc->reach + POOL_LINK_MARGIN) {
 				count = put_contact(out, count, LINK_CUSHION, a, -1, 4 + k, pool_shape_normal(sc->shape, k, pa), R, gap,
 				                    p->mu_cushion);
+				if (out)
+					out[count - 1].bend = arc_bend(sc, k, &sc->s[a], pa, gap + R, sc->dt);
+			}
 		}
 		for (int rail = POOL_RAIL_SOUTH; !sc->shape && rail <= POOL_RAIL_EAST; ++rail) {
 			// The nose: its line, ending at the pocket mouths (over a mouth there is no nose but its
@@ -515,7 +552,7 @@ static void build_vector(link_problem *P, double dt) {
 				sum += g[0] * v[0] + g[1] * v[1] + g[2] * v[2] + g[3] * v[3] + g[4] * v[4] + g[5] * v[5];
 			}
 			if (j == 0)
-				sum += gap_velocity(c->gap, dt);
+				sum += gap_velocity(c->gap, dt) - c->bend / dt; // the end's linearised gap >= bend
 			P->m.q[row_of(P, i, j)] = sum;
 		}
 		P->m.q[lambda_of(P, i)] = 0.0;
@@ -577,7 +614,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 			return POOL_ERR_NON_FINITE;
 
 	const pool_table_shape *shape = ws->shape && ws->shape->table.pockets == POOL_POCKETS_JAWS ? ws->shape : NULL;
-	link_scene sc = {def, shape, s, n, !def->airborne, 0.0};
+	link_scene sc = {def, shape, s, n, !def->airborne, 0.0, dt};
 	sc.reach = speed_bound(&sc, dt) * dt;
 	const int nc = find_contacts(&sc, NULL);
 	if (nc > POOL_LINK_CONTACTS_MAX)

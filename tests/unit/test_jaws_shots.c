@@ -19,6 +19,7 @@
 
 #include "motion.h"
 #include "pool/pool.h"
+#include "link_step.h"
 #include "table_shape.h"
 #include "vec3.h"
 
@@ -392,8 +393,69 @@ static void test_linked_above_a_hole(void **state) {
 	pool_sim_destroy(sim);
 }
 
+// A ball linked on the top of the cushion over a corner jaw (soak seed 49, mouth shot 27112: a
+// 9 ft table, the nose 0.82 R high; ball 1, struck at 68 deg, hops along the north rail's nose
+// from above and LINK takes it 3 mm inside the north-west jaw's circle, moving along it at
+// 0.6 m/s). From there the arc bends towards the ball's centre: the step's tangent plane at the
+// nearest point let it sink 0.6 um into the nose curve a step, 7.2 um after 16 steps (the soak's
+// limit inside LINK is 1 um). The shot replayed: at every event and on samples no ball is inside
+// the nose curve beyond LINK's touching band, and ball 1 still rides the jaw linked.
+static void test_linked_over_a_jaw(void **state) {
+	(void)state;
+	pool_sim_def def = soak_flight_def(2.54, 1.27, 0.052232539917924987);
+	const double deg = 3.14159265358979323846 / 180.0;
+	pool_table_shape sh;
+	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
+	pool_sim *sim = make_sim(&def);
+	const double R = def.params.ball_radius;
+	pool_ball_state b;
+	memset(&b, 0, sizeof b);
+	b.motion = POOL_MOTION_AIRBORNE;
+	b.pos = pool_v3(0.080822305589622376, 0.016026585102004286, 0.15650779209308591);
+	b.vel = pool_v3(-0.56287424282230125, -0.57712961059418255, 1.182363034858767);
+	b.omega = pool_v3(5.897227143611758, 38.308866732642159, -14.799420718579004);
+	add_ball(sim, &b);
+	b.id = 2;
+	b.pos = pool_v3(0.042850677279967046, 0.83667887019038334, 0.082505259318200366);
+	b.vel = pool_v3(1.7891347759044862, -0.33085068673737972, 1.8894268908267984);
+	b.omega = pool_v3(-29.881812970675227, -10.22705189419294, -9.3251042768250958);
+	add_ball(sim, &b);
+	memset(&b, 0, sizeof b);
+	b.id = 1;
+	b.pos = pool_v3(0.02943863130846679, 0.89223280262147564, R);
+	add_ball(sim, &b);
+	const pool_strike strike = {6.4492003586602502, 54.583830256398059 * deg, 68 * deg, -0.028574999999137381,
+	                            3.4994282284579217e-18};
+	assert_int_equal(pool_sim_strike(sim, 1, &strike, NULL), POOL_OK);
+	assert_int_equal(pool_sim_run(sim), POOL_OK);
+	stats st;
+	memset(&st, 0, sizeof st);
+	st.worst_inside = st.worst_overlap = -INFINITY;
+	int ne, jaw_steps = 0;
+	const pool_event *ev = pool_sim_events(sim, &ne);
+	for (int e = 0; e < ne; ++e) {
+		sample(sim, &sh, &def, ev[e].time, &st);
+		const pool_ball_state *after = pool_sim_event_states(sim, &ev[e]);
+		if (ev[e].type == POOL_EVENT_LINK_STEP && ev[e].ball_count == 1 && after->id == 1) {
+			int part;
+			const pool_vec3 p = after->pos;
+			pool_shape_distance(&sh, p, &part);
+			jaw_steps += sh.parts[part].part == POOL_PART_JAW && p.z > def.table.cushion_height;
+		}
+	}
+	const double end = pool_sim_end_time(sim);
+	for (int i = 0; i <= 20 * SAMPLES; ++i)
+		sample(sim, &sh, &def, end * i / (20 * SAMPLES), &st);
+	printf("linked over a jaw: %d events, %d link steps of ball 1 on the jaw, worst inside %.3g m\n", ne, jaw_steps,
+	       st.worst_inside);
+	assert_true(jaw_steps >= 10); // the shot still rides the jaw linked
+	assert_true(st.worst_inside <= POOL_LINK_TOUCH_GAP);
+	pool_sim_destroy(sim);
+}
+
 int main(void) {
 	const struct CMUnitTest tests[] = {cmocka_unit_test(test_families), cmocka_unit_test(test_linked_into_hole),
-	                                   cmocka_unit_test(test_long_flight_onto_a_jaw), cmocka_unit_test(test_linked_above_a_hole)};
+	                                   cmocka_unit_test(test_long_flight_onto_a_jaw), cmocka_unit_test(test_linked_above_a_hole),
+	                                   cmocka_unit_test(test_linked_over_a_jaw)};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
