@@ -15,7 +15,9 @@
 // and no contact opens into interpenetration: positions advance linearly (p += dt v+) and the
 // distance between two spheres, from a sphere to a line or to a plane is convex in the
 // positions, so the linearised gap gap + dt n'u+ >= 0 is a lower bound of the true gap at the
-// step's end.
+// step's end. The distance to a jaw's arc is convex only from outside its circle; from inside
+// (a ball on the cushion's top over a jaw) the row asks gap + dt n'u+ >= bend instead, bend
+// bounding how far the plane overstates the arc's distance over the step (arc_bend).
 //
 // Restitution is zero: the step is inelastic at velocity level (a closing contact ends the
 // step at relative normal velocity >= 0, nothing bounces). Impacts with restitution are the
