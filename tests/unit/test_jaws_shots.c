@@ -68,6 +68,9 @@ static double inside(const pool_table_shape *sh, const pool_sim_def *def, pool_v
 	return worst;
 }
 
+/// Radians in a degree.
+#define DEG (3.14159265358979323846 / 180.0)
+
 typedef struct stats {
 	double worst_inside, worst_overlap, worst_energy;
 	long events, shots, pocketed, jaw_hits, facing_hits;
@@ -86,6 +89,21 @@ static void sample(const pool_sim *sim, const pool_table_shape *sh, const pool_s
 			if (active(&s[j]))
 				st->worst_overlap = fmax(st->worst_overlap, 2.0 * def->params.ball_radius - pool_v3_len(pool_v3_sub(s[i].pos, s[j].pos)));
 	}
+}
+
+// Stats with nothing seen yet.
+static stats no_stats(void) {
+	stats st;
+	memset(&st, 0, sizeof st);
+	st.worst_inside = st.worst_overlap = -INFINITY;
+	return st;
+}
+
+// Samples the whole shot evenly (20 * SAMPLES intervals), between and beside its events.
+static void sample_shot(const pool_sim *sim, const pool_table_shape *sh, const pool_sim_def *def, stats *st) {
+	const double end = pool_sim_end_time(sim);
+	for (int i = 0; i <= 20 * SAMPLES; ++i)
+		sample(sim, sh, def, end * i / (20 * SAMPLES), st);
 }
 
 static void one_family(const char *preset, int airborne, stats *st) {
@@ -220,15 +238,14 @@ static void test_families(void **state) {
 // A soak shot's jaws table as its scenario prints it: the WPA pockets (mouths, cut angles,
 // jaws, shelves and holes) on a table of this size and nose height.
 static void soak_jaws_table(pool_table_def *t, double length, double width, double nose) {
-	const double deg = 3.14159265358979323846 / 180.0;
 	t->length = length;
 	t->width = width;
 	t->cushion_height = nose;
 	t->corner_mouth = 0.1143;
 	t->side_mouth = 0.127;
 	t->pockets = POOL_POCKETS_JAWS;
-	t->corner_cut_angle = 142 * deg;
-	t->side_cut_angle = 104 * deg;
+	t->corner_cut_angle = 142 * DEG;
+	t->side_cut_angle = 104 * DEG;
 	t->corner_jaw_radius = 0.02095;
 	t->side_jaw_radius = 0.0079500000000000005;
 	t->corner_shelf = 0.028575;
@@ -247,6 +264,12 @@ static pool_sim_def soak_flight_def(double length, double width, double nose) {
 	return def;
 }
 
+// A replayed soak shot's nose shape (for the checks) and its simulation.
+static pool_sim *replay_setup(const pool_sim_def *def, pool_table_shape *sh) {
+	assert_int_equal(pool_table_shape_build(&def->table, def->params.ball_radius, sh, NULL), POOL_OK);
+	return make_sim(def);
+}
+
 // A ball linked (LINK) against a facing slides into the hole during a step: the hole's edge
 // must be its event even though the part it touches is "contacted" at once (a part contact is
 // the step's LCP's, no event; taken as the earliest prediction it hid the hole, and the ball
@@ -255,12 +278,10 @@ static pool_sim_def soak_flight_def(double length, double width, double nose) {
 static void test_linked_into_hole(void **state) {
 	(void)state;
 	pool_sim_def def = thesis_sim_def();
-	const double deg = 3.14159265358979323846 / 180.0;
 	soak_jaws_table(&def.table, 1.9811999999999999, 0.99059999999999993, 0.053004041623678999);
 	def.airborne = false;
 	pool_table_shape sh;
-	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
-	pool_sim *sim = make_sim(&def);
+	pool_sim *sim = replay_setup(&def, &sh);
 	const double R = def.params.ball_radius;
 	const double at[4][2] = {{0.80517546545028851, 0.97577594689875402},
 	                         {0.014824053586996301, 0.69859126863235865},
@@ -277,22 +298,18 @@ static void test_linked_into_hole(void **state) {
 		}
 		add_ball(sim, &b);
 	}
-	const pool_strike strike = {9.998357414745092, 180 * deg, 35.764550201990041 * deg, -0.024215845921280756,
+	const pool_strike strike = {9.998357414745092, 180 * DEG, 35.764550201990041 * DEG, -0.024215845921280756,
 	                            0.015169819752230319};
 	assert_int_equal(pool_sim_strike(sim, 0, &strike, NULL), POOL_OK);
 	assert_int_equal(pool_sim_run(sim), POOL_OK);
-	stats st;
-	memset(&st, 0, sizeof st);
-	st.worst_inside = st.worst_overlap = -INFINITY;
+	stats st = no_stats();
 	int ne, linked_pocket = 0;
 	const pool_event *ev = pool_sim_events(sim, &ne);
 	for (int e = 0; e < ne; ++e) {
 		sample(sim, &sh, &def, ev[e].time, &st);
 		linked_pocket += ev[e].type == POOL_EVENT_POCKET && ev[e].pocket == POOL_POCKET_NW;
 	}
-	const double end = pool_sim_end_time(sim);
-	for (int i = 0; i <= 20 * SAMPLES; ++i)
-		sample(sim, &sh, &def, end * i / (20 * SAMPLES), &st);
+	sample_shot(sim, &sh, &def, &st);
 	printf("linked into the hole: %d events, worst inside %.3g m, overlap %.3g m\n", ne, st.worst_inside, st.worst_overlap);
 	assert_true(linked_pocket == 1); // the shot's ball 0 drops into the north-west corner
 	assert_true(st.worst_inside <= POSITION_TOLERANCE);
@@ -309,15 +326,13 @@ static void test_linked_into_hole(void **state) {
 static void test_long_flight_onto_a_jaw(void **state) {
 	(void)state;
 	pool_sim_def def = soak_flight_def(2.3367999999999998, 1.1683999999999999, 0.028575000195715631);
-	const double deg = 3.14159265358979323846 / 180.0;
 	pool_table_shape sh;
-	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
-	pool_sim *sim = make_sim(&def);
+	pool_sim *sim = replay_setup(&def, &sh);
 	pool_ball_state b;
 	memset(&b, 0, sizeof b);
 	b.pos = pool_v3(2.2559786949103775, 0.028574999999999001, def.params.ball_radius);
 	add_ball(sim, &b);
-	const pool_strike strike = {12.0, 90 * deg, 89 * deg, -5.2491423033183011e-18, -0.02857499978482481};
+	const pool_strike strike = {12.0, 90 * DEG, 89 * DEG, -5.2491423033183011e-18, -0.02857499978482481};
 	assert_int_equal(pool_sim_strike(sim, 0, &strike, NULL), POOL_OK);
 	assert_int_equal(pool_sim_run(sim), POOL_OK);
 	int ne, jaw = -1;
@@ -327,9 +342,7 @@ static void test_long_flight_onto_a_jaw(void **state) {
 			jaw = e;
 	assert_true(jaw >= 0);
 	const double tc = ev[jaw].time;
-	stats st;
-	memset(&st, 0, sizeof st);
-	st.worst_inside = st.worst_overlap = -INFINITY;
+	stats st = no_stats();
 	sample(sim, &sh, &def, tc, &st);
 	const double at_contact = st.worst_inside;
 	for (int i = -50; i < 0; ++i) // (the state at tc is the contact's; before it, the flight)
@@ -350,10 +363,8 @@ static void test_long_flight_onto_a_jaw(void **state) {
 static void test_linked_above_a_hole(void **state) {
 	(void)state;
 	pool_sim_def def = soak_flight_def(1.9811999999999999, 0.99059999999999993, 0.028575000079588804);
-	const double deg = 3.14159265358979323846 / 180.0;
 	pool_table_shape sh;
-	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
-	pool_sim *sim = make_sim(&def);
+	pool_sim *sim = replay_setup(&def, &sh);
 	const double R = def.params.ball_radius;
 	pool_ball_state b;
 	memset(&b, 0, sizeof b);
@@ -365,12 +376,10 @@ static void test_linked_above_a_hole(void **state) {
 	b.id = 1;
 	b.pos = pool_v3(1.9168974015108371, 0.96202399999999988, R);
 	add_ball(sim, &b);
-	const pool_strike strike = {2.6164080278772657, 0.0, 85.218218050182514 * deg, -0.028574999999971425, 3.4994282285600623e-18};
+	const pool_strike strike = {2.6164080278772657, 0.0, 85.218218050182514 * DEG, -0.028574999999971425, 3.4994282285600623e-18};
 	assert_int_equal(pool_sim_strike(sim, 1, &strike, NULL), POOL_OK);
 	assert_int_equal(pool_sim_run(sim), POOL_OK);
-	stats st;
-	memset(&st, 0, sizeof st);
-	st.worst_inside = st.worst_overlap = -INFINITY;
+	stats st = no_stats();
 	int ne, linked = 0;
 	double highest_pocket = -INFINITY;
 	const pool_event *ev = pool_sim_events(sim, &ne);
@@ -382,9 +391,7 @@ static void test_linked_above_a_hole(void **state) {
 		}
 		sample(sim, &sh, &def, ev[e].time, &st);
 	}
-	const double end = pool_sim_end_time(sim);
-	for (int i = 0; i <= 20 * SAMPLES; ++i)
-		sample(sim, &sh, &def, end * i / (20 * SAMPLES), &st);
+	sample_shot(sim, &sh, &def, &st);
 	printf("linked above a hole: %d events, %d link_begin, highest pocket event %.6g m above the nose, worst inside %.3g m\n",
 	       ne, linked, highest_pocket - def.table.cushion_height, st.worst_inside);
 	assert_true(linked > 0); // the shot still reaches LINK on the facing
@@ -403,10 +410,8 @@ static void test_linked_above_a_hole(void **state) {
 static void test_linked_over_a_jaw(void **state) {
 	(void)state;
 	pool_sim_def def = soak_flight_def(2.54, 1.27, 0.052232539917924987);
-	const double deg = 3.14159265358979323846 / 180.0;
 	pool_table_shape sh;
-	assert_int_equal(pool_table_shape_build(&def.table, def.params.ball_radius, &sh, NULL), POOL_OK);
-	pool_sim *sim = make_sim(&def);
+	pool_sim *sim = replay_setup(&def, &sh);
 	const double R = def.params.ball_radius;
 	pool_ball_state b;
 	memset(&b, 0, sizeof b);
@@ -424,13 +429,11 @@ static void test_linked_over_a_jaw(void **state) {
 	b.id = 1;
 	b.pos = pool_v3(0.02943863130846679, 0.89223280262147564, R);
 	add_ball(sim, &b);
-	const pool_strike strike = {6.4492003586602502, 54.583830256398059 * deg, 68 * deg, -0.028574999999137381,
+	const pool_strike strike = {6.4492003586602502, 54.583830256398059 * DEG, 68 * DEG, -0.028574999999137381,
 	                            3.4994282284579217e-18};
 	assert_int_equal(pool_sim_strike(sim, 1, &strike, NULL), POOL_OK);
 	assert_int_equal(pool_sim_run(sim), POOL_OK);
-	stats st;
-	memset(&st, 0, sizeof st);
-	st.worst_inside = st.worst_overlap = -INFINITY;
+	stats st = no_stats();
 	int ne, jaw_steps = 0;
 	const pool_event *ev = pool_sim_events(sim, &ne);
 	for (int e = 0; e < ne; ++e) {
@@ -443,9 +446,7 @@ static void test_linked_over_a_jaw(void **state) {
 			jaw_steps += sh.parts[part].part == POOL_PART_JAW && p.z > def.table.cushion_height;
 		}
 	}
-	const double end = pool_sim_end_time(sim);
-	for (int i = 0; i <= 20 * SAMPLES; ++i)
-		sample(sim, &sh, &def, end * i / (20 * SAMPLES), &st);
+	sample_shot(sim, &sh, &def, &st);
 	printf("linked over a jaw: %d events, %d link steps of ball 1 on the jaw, worst inside %.3g m\n", ne, jaw_steps,
 	       st.worst_inside);
 	assert_true(jaw_steps >= 10); // the shot still rides the jaw linked
