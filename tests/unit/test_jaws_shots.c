@@ -366,16 +366,12 @@ static void test_linked_above_a_hole(void **state) {
 	pool_table_shape sh;
 	pool_sim *sim = replay_setup(&def, &sh);
 	const double R = def.params.ball_radius;
-	pool_ball_state b;
-	memset(&b, 0, sizeof b);
-	b.pos = pool_v3(0.070980322776401386, 0.96202499999999991, R);
-	b.vel = pool_v3(-0.00056588838332504582, -0.00075526811793557344, 0);
-	b.omega = pool_v3(-51.419342007938425, -27.601371442546977, 13.706935021251141);
-	add_ball(sim, &b);
-	memset(&b, 0, sizeof b);
-	b.id = 1;
-	b.pos = pool_v3(1.9168974015108371, 0.96202399999999988, R);
-	add_ball(sim, &b);
+	const pool_ball_state balls[2] = {
+	    {.id = 0, .pos = {0.070980322776401386, 0.96202499999999991, R}, .vel = {-0.00056588838332504582, -0.00075526811793557344, 0},
+	     .omega = {-51.419342007938425, -27.601371442546977, 13.706935021251141}},
+	    {.id = 1, .pos = {1.9168974015108371, 0.96202399999999988, R}}};
+	for (int i = 0; i < 2; ++i)
+		add_ball(sim, &balls[i]);
 	const pool_strike strike = {2.6164080278772657, 0.0, 85.218218050182514 * DEG, -0.028574999999971425, 3.4994282285600623e-18};
 	assert_int_equal(pool_sim_strike(sim, 1, &strike, NULL), POOL_OK);
 	assert_int_equal(pool_sim_run(sim), POOL_OK);
@@ -413,22 +409,16 @@ static void test_linked_over_a_jaw(void **state) {
 	pool_table_shape sh;
 	pool_sim *sim = replay_setup(&def, &sh);
 	const double R = def.params.ball_radius;
-	pool_ball_state b;
-	memset(&b, 0, sizeof b);
-	b.motion = POOL_MOTION_AIRBORNE;
-	b.pos = pool_v3(0.080822305589622376, 0.016026585102004286, 0.15650779209308591);
-	b.vel = pool_v3(-0.56287424282230125, -0.57712961059418255, 1.182363034858767);
-	b.omega = pool_v3(5.897227143611758, 38.308866732642159, -14.799420718579004);
-	add_ball(sim, &b);
-	b.id = 2;
-	b.pos = pool_v3(0.042850677279967046, 0.83667887019038334, 0.082505259318200366);
-	b.vel = pool_v3(1.7891347759044862, -0.33085068673737972, 1.8894268908267984);
-	b.omega = pool_v3(-29.881812970675227, -10.22705189419294, -9.3251042768250958);
-	add_ball(sim, &b);
-	memset(&b, 0, sizeof b);
-	b.id = 1;
-	b.pos = pool_v3(0.02943863130846679, 0.89223280262147564, R);
-	add_ball(sim, &b);
+	const pool_ball_state balls[3] = {
+	    {.id = 0, .motion = POOL_MOTION_AIRBORNE, .pos = {0.080822305589622376, 0.016026585102004286, 0.15650779209308591},
+	     .vel = {-0.56287424282230125, -0.57712961059418255, 1.182363034858767},
+	     .omega = {5.897227143611758, 38.308866732642159, -14.799420718579004}},
+	    {.id = 2, .motion = POOL_MOTION_AIRBORNE, .pos = {0.042850677279967046, 0.83667887019038334, 0.082505259318200366},
+	     .vel = {1.7891347759044862, -0.33085068673737972, 1.8894268908267984},
+	     .omega = {-29.881812970675227, -10.22705189419294, -9.3251042768250958}},
+	    {.id = 1, .pos = {0.02943863130846679, 0.89223280262147564, R}}};
+	for (int i = 0; i < 3; ++i)
+		add_ball(sim, &balls[i]);
 	const pool_strike strike = {6.4492003586602502, 54.583830256398059 * DEG, 68 * DEG, -0.028574999999137381,
 	                            3.4994282284579217e-18};
 	assert_int_equal(pool_sim_strike(sim, 1, &strike, NULL), POOL_OK);

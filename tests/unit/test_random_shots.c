@@ -372,16 +372,7 @@ static void test_flight_over_a_mouth(void **state) {
 	t->corner_mouth = 0.1143;
 	t->side_mouth = 0.127;
 	t->pockets = POOL_POCKETS_MOUTH_LINES;
-	pool_params *p = &s.def.params;
-	p->mu_slide = 0.2;
-	p->mu_roll = 0.01;
-	p->mu_spin = 0.0127;
-	p->mu_ball = 0.06;
-	p->e_ball = 0.95;
-	p->mu_cushion = 0.2;
-	p->e_cushion = 0.85;
-	p->mu_table = 0.2;
-	p->e_table = 0.5;
+	const pool_params *p = &s.def.params; // the defaults: the nose class draws only the table
 	s.def.airborne = true;
 	s.def.max_time = 60;
 	s.def.max_events = 20000;
