@@ -150,13 +150,14 @@ static int put_contact(link_contact *out, int count, link_kind kind, int a, int 
 // the contact beyond POOL_LINK_TOUCH_GAP every step. (rho, d and r - rho are taken at their worst
 // over a move of that speed.) Never more than 2 s (the distance and its plane each change by at
 // most s).
-static double arc_bend(const link_scene *sc, int k, const pool_ball_state *b, pool_vec3 pa, double d, double dt) {
+static double arc_bend(const link_scene *sc, int k, const pool_ball_state *b, pool_vec3 pa, double d) {
 	const pool_nose_part *np = &sc->shape->parts[k];
 	if (np->kind != POOL_NOSE_ARC)
 		return 0.0;
 	const double ex = pa.x - np->ax, ey = pa.y - np->ay, rho = hypot(ex, ey), inside = np->length - rho;
 	if (!(inside > 0.0 && rho > 0.0))
 		return inside > 0.0 ? sc->reach : 0.0; // outside the circle: convex
+	const double dt = sc->dt;
 	const double slack = sc->def->params.g * dt;
 	const double along = fabs(b->vel.x * ey - b->vel.y * ex) / rho + slack;        // m/s, along the arc
 	const double move = (hypot(b->vel.x, b->vel.y) + slack) * dt, s = along * dt; // m
@@ -190,7 +191,7 @@ static int find_contacts(const link_scene *sc, link_contact *out) {
 				count = put_contact(out, count, LINK_CUSHION, a, -1, 4 + k, pool_shape_normal(sc->shape, k, pa), R, gap,
 				                    p->mu_cushion);
 				if (out)
-					out[count - 1].bend = arc_bend(sc, k, &sc->s[a], pa, gap + R, sc->dt);
+					out[count - 1].bend = arc_bend(sc, k, &sc->s[a], pa, gap + R);
 			}
 		}
 		for (int rail = POOL_RAIL_SOUTH; !sc->shape && rail <= POOL_RAIL_EAST; ++rail) {
