@@ -1,8 +1,8 @@
 // pool-shot-server: answers every shot_request_t on POOL_SHOT_REQUEST with a shot_t on POOL_SHOT
 // carrying the same request_id. Each worker thread reuses one simulation for every request it
 // takes (pool_sim_reset via pool_scenario_setup), so a steady stream of shots does not allocate per
-// request; after a shot that grew it past RETAIN_EVENTS events it is freed, so one huge shot does
-// not pin its memory.
+// request; after a shot that grew it past RETAIN_EVENTS events, or one cut by a budget, it is
+// freed, so one huge shot does not pin its memory.
 //
 // 1 + --workers threads (default 1 worker). The main one only receives: it takes each request off
 // liblcm's queue as soon as liblcm has it, and either appends it to the server's own queue or,
@@ -28,10 +28,11 @@
 // messages larger than the receivers' socket buffers) is replaced by one carrying the final states
 // and an error saying so.
 //
-// Memory: a request's scenario is freed once it is answered, and once no datagram has come for
-// 200 ms the main thread gives back to the system what malloc kept of freed blocks (glibc
-// malloc_trim, every thread's heap: liblcm's receive thread assembles each large datagram in a
-// block of its own size), so the resident size goes back down after a burst of large requests.
+// Memory: a request's scenario is freed once it is answered; blocks of LARGE_BLOCK_BYTES or more
+// (liblcm's receive thread assembles each large datagram in a block of its own size) are mappings
+// of their own, returned to the system when freed; and once no datagram has come for 200 ms the
+// main thread gives back what malloc kept of smaller freed blocks (glibc malloc_trim), so the
+// resident size goes back down after a burst of large requests.
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <inttypes.h>
@@ -81,6 +82,8 @@
 #define RETAIN_EVENTS 100000
 /// Request bytes received after which an idle server trims malloc's heaps (release_memory).
 #define TRIM_BYTES (1L << 20)
+/// Blocks at least this large get a mapping of their own (fix_malloc_thresholds).
+#define LARGE_BLOCK_BYTES (256 * 1024)
 
 static const char usage_text[] =
 	"usage: pool-shot-server [--lcm-url URL] [--max-requests N] [--max-shot-seconds S]\n"
@@ -353,13 +356,16 @@ static void answer_shot(worker *w, int64_t shot_id, int64_t request_id, const sh
 }
 
 // Frees the simulation after a shot that made it large, so its memory goes back to the system.
-static void trim_sim(worker *w)
+// A shot cut by a budget frees it whatever its size: such a shot is an outlier, not the steady
+// stream the reuse is for, and how many events it reached depends on the machine's load, so
+// keeping it would make what the server holds afterwards a matter of timing.
+static void trim_sim(worker *w, bool cut_by_budget)
 {
 	int count = 0;
 	if (w->sim != NULL) {
 		pool_sim_events(w->sim, &count);
 	}
-	if (count > RETAIN_EVENTS) {
+	if (count > RETAIN_EVENTS || (cut_by_budget && w->sim != NULL)) {
 		pool_sim_destroy(w->sim);
 		w->sim = NULL;
 	}
@@ -449,7 +455,7 @@ static void answer_request(worker *w, const queued_request *q)
 		             : "shot abandoned: the server is stopping (--max-requests answered)");
 		break;
 	}
-	trim_sim(w);
+	trim_sim(w, outcome == RUN_OVER_TIME);
 }
 
 static void free_queued(queued_request *q)
@@ -593,9 +599,9 @@ static void on_request(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 
 // After 200 ms without a datagram, and at least TRIM_BYTES of requests received or freed since the
 // last time:
-// gives back to the system what malloc keeps of freed blocks, in every thread's heap (liblcm's
-// receive thread assembles each large datagram in a block of its own size; glibc keeps such
-// blocks for reuse, which is fast during a burst but held ~80 MB after a flood of 4 MB requests).
+// gives back to the system what malloc keeps of freed blocks smaller than LARGE_BLOCK_BYTES, in
+// every thread's heap (the decoded requests, a freed simulation's smaller arrays); glibc keeps
+// them for reuse, which is fast during a burst but would hold them for good once it is over.
 static void release_memory(server_state *s)
 {
 #ifdef __GLIBC__
@@ -605,6 +611,19 @@ static void release_memory(server_state *s)
 	}
 #else
 	(void)s;
+#endif
+}
+
+// glibc raises its mmap threshold to the size of the largest mapped block freed (up to 32 MiB);
+// after that, the 4 MiB blocks of large datagrams come from the receive thread's heap, whose top
+// malloc_trim does not give back (only the main heap's): after a flood of 4 MiB requests the
+// server kept 0 to 20 MiB more from run to run. A fixed threshold keeps every block of
+// LARGE_BLOCK_BYTES or more in a mapping of its own, unmapped when freed: one mmap and munmap per
+// large request, nothing beside receiving it.
+static void fix_malloc_thresholds(void)
+{
+#ifdef __GLIBC__
+	mallopt(M_MMAP_THRESHOLD, LARGE_BLOCK_BYTES);
 #endif
 }
 
@@ -686,6 +705,7 @@ int main(int argc, char **argv)
 	}
 
 	pool_lcm_catch_stop_signals();
+	fix_malloc_thresholds();
 
 	server_state s;
 	memset(&s, 0, sizeof s);
