@@ -361,11 +361,12 @@ static void answer_shot(worker *w, int64_t shot_id, int64_t request_id, const sh
 // keeping it would make what the server holds afterwards a matter of timing.
 static void trim_sim(worker *w, bool cut_by_budget)
 {
-	int count = 0;
-	if (w->sim != NULL) {
-		pool_sim_events(w->sim, &count);
+	if (w->sim == NULL) {
+		return;
 	}
-	if (count > RETAIN_EVENTS || (cut_by_budget && w->sim != NULL)) {
+	int count = 0;
+	pool_sim_events(w->sim, &count);
+	if (cut_by_budget || count > RETAIN_EVENTS) {
 		pool_sim_destroy(w->sim);
 		w->sim = NULL;
 	}
