@@ -8,15 +8,21 @@
 - docs/commands.md runs `pool-rack 8ball` and `pool-sim --summary` on it and shows the summary:
   its events, simulated time, stop reason, events by type and pocketed balls (the CPU time
   varies and is not compared).
+- The README runs `pool-sensitivity` on its draw shot with spin-blind collisions and says how far
+  the means move, under the default laws and with `"models": "thesis"` in the scenario: the
+  README's own command is run both ways and the distances compared at the digits the README
+  gives.
 
 A change of the laws or of the table (as the merge of real pockets was) changes these outputs;
 the pages a newcomer reads first cannot then go stale unnoticed.
 
-Usage: test_doc_examples.py --pool-rack PATH --pool-sim PATH --work DIR [unittest args]
+Usage: test_doc_examples.py --pool-rack PATH --pool-sim PATH [--pool-sensitivity PATH] --work DIR
+[unittest args]
 (LIBPOOL_PATH names the shared library; PYTHONPATH holds python/).
 """
 
 import argparse
+import json
 import os
 import re
 import subprocess
@@ -64,6 +70,35 @@ def without_cpu(summary):
     return [re.sub(r", cpu [0-9.]+ ms$", "", line.rstrip()) for line in summary.strip().splitlines()]
 
 
+def sensitivity_example(text):
+    """The README's pool-sensitivity command: its arguments after the program, `-o` left out."""
+    m = re.search(r"^build/release/tools/pool-sensitivity (.*?)  # writes", text, re.M | re.S)
+    if m is None:
+        raise AssertionError("README.md: the pool-sensitivity example is not found")
+    args = m.group(1).replace("\\\n", " ").split()
+    i = args.index("-o")
+    return args[:i] + args[i + 2 :]
+
+
+def claimed_spin_blind(text):
+    """The README's distances of the means: (cue, object) under the defaults and under thesis."""
+    m = re.search(
+        r"spin-blind collisions move the mean final position of the cue ball by\s+([0-9.]+) m and"
+        r"\s+of the object ball by\s+([0-9.]+) m\s+\(with\s+`\"models\": \"thesis\"`\s+in\s+the\s+scenario,"
+        r"\s+([0-9.]+) m\s+and\s+([0-9.]+) m\)",
+        text,
+    )
+    if m is None:
+        raise AssertionError("README.md: the sentence giving the spin-blind distances is not found")
+    return (m.group(1), m.group(2)), (m.group(3), m.group(4))
+
+
+def at_digits_of(value, claimed):
+    """value rounded to as many decimals as the claimed figure has, as text."""
+    decimals = len(claimed.split(".")[1]) if "." in claimed else 0
+    return f"{value:.{decimals}f}"
+
+
 def run(argv):
     out = subprocess.run(argv, capture_output=True, text=True, timeout=120)
     if out.returncode != 0:
@@ -97,11 +132,39 @@ class CommandsBreak(unittest.TestCase):
         self.assertEqual(without_cpu(out.stderr), claimed)
 
 
+class ReadmeSensitivity(unittest.TestCase):
+    def distances(self, scenario, args):
+        out = run([ARGS.pool_sensitivity, scenario] + args).stdout
+        found = re.findall(r"^distance between the means \(default to spin-blind\), ball ([01]): ([0-9.eE+-]+) m$", out, re.M)
+        self.assertEqual([b for b, _ in found], ["0", "1"], out)
+        return [float(d) for _, d in found]
+
+    def test_spin_blind(self):
+        if not ARGS.pool_sensitivity:
+            self.skipTest("no pool-sensitivity")
+        text = page("README.md")
+        args = sensitivity_example(text)
+        scenario = os.path.join(SOURCE, args[0])
+        (cue, obj), (cue_t, obj_t) = claimed_spin_blind(text)
+        got = self.distances(scenario, args[1:])
+        self.assertEqual([at_digits_of(got[0], cue), at_digits_of(got[1], obj)], [cue, obj])
+        with open(scenario, encoding="utf-8") as f:
+            doc = json.load(f)
+        doc["models"] = "thesis"
+        os.makedirs(ARGS.work, exist_ok=True)
+        thesis = os.path.join(ARGS.work, "example_draw_thesis.json")
+        with open(thesis, "w", encoding="utf-8") as f:
+            json.dump(doc, f)
+        got = self.distances(thesis, args[1:])
+        self.assertEqual([at_digits_of(got[0], cue_t), at_digits_of(got[1], obj_t)], [cue_t, obj_t])
+
+
 def main():
     global ARGS
     p = argparse.ArgumentParser()
     p.add_argument("--pool-rack", required=True)
     p.add_argument("--pool-sim", required=True)
+    p.add_argument("--pool-sensitivity")
     p.add_argument("--work", required=True)
     ARGS, rest = p.parse_known_args()
     prog = unittest.main(argv=[sys.argv[0]] + rest, exit=False, verbosity=2)
