@@ -8,6 +8,7 @@
 - docs/commands.md runs `pool-rack 8ball` and `pool-sim --summary` on it and shows the summary:
   its events, simulated time, stop reason, events by type and pocketed balls (the CPU time
   varies and is not compared).
+- docs/python.md's first example ("A break, pocketed balls") and the output it says it prints.
 - The README runs `pool-sensitivity` on its draw shot with spin-blind collisions and says how far
   the means move, under the default laws and with `"models": "thesis"` in the scenario: the
   README's own command is run both ways and the distances compared at the digits the README
@@ -99,6 +100,17 @@ def at_digits_of(value, claimed):
     return f"{value:.{decimals}f}"
 
 
+def example_and_output(text, heading):
+    """The first ```python block under `heading` and the ``` block after the word "prints"."""
+    start = text.find(heading)
+    if start < 0:
+        raise AssertionError(f"heading {heading!r} not found")
+    m = re.compile(r"```python\n(.*?)\n```\s+prints\s+```\n(.*?)\n```", re.S).search(text, start)
+    if m is None:
+        raise AssertionError(f"under {heading!r}: no ```python block followed by 'prints' and its output")
+    return m.group(1), m.group(2)
+
+
 def run(argv):
     out = subprocess.run(argv, capture_output=True, text=True, timeout=120)
     if out.returncode != 0:
@@ -119,6 +131,12 @@ class ReadmePython(unittest.TestCase):
         self.assertIn("libpool.Sim()", code)
         code = code.replace("libpool.Sim()", 'libpool.Sim(models="thesis")')
         self.assertEqual(run([sys.executable, "-c", code]).stdout.strip(), thesis)
+
+
+class PythonManual(unittest.TestCase):
+    def test_break_pocketed_balls(self):
+        code, claimed = example_and_output(page("docs/python.md"), "## A break, pocketed balls")
+        self.assertEqual(run([sys.executable, "-c", code]).stdout.rstrip("\n"), claimed)
 
 
 class CommandsBreak(unittest.TestCase):
