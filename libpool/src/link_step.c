@@ -503,9 +503,10 @@ static size_t matrix_nonzeros(const link_problem *P) {
 /// (mu fn - E' beta, impulses) are divided by it, which leaves E, -E' and mu as they are.
 /// Positive scalings of unknowns and rows keep every solution; they make the entries O(1)
 /// (J' M^-1 J is ~1/m, 6 per kg for a pool ball) and Lemke's residual a velocity, comparable
-/// with q's. `compliance` is added to the impulse block's diagonal (the retries). Never formed
-/// densely: a rack's 47 contacts have 1.4e5 nonzeros of 5.7e5 entries.
-static void build_matrix(link_problem *P, double mass, double compliance) {
+/// with q's. The retries add `friction_compliance` to the friction directions' diagonal and
+/// `normal_compliance` to the normals'. Never formed densely: a rack's 47 contacts have 1.4e5
+/// nonzeros of 5.7e5 entries.
+static void build_matrix(link_problem *P, double mass, double friction_compliance, double normal_compliance) {
 	int *start = P->m.col_start, *row = P->m.col_row;
 	double *val = P->m.col_val;
 	size_t t = 0;
@@ -533,6 +534,7 @@ static void build_matrix(link_problem *P, double mass, double compliance) {
 				const link_shared sh = shared_sides(P, i1, i2);
 				for (int j1 = pass ? 0 : 1; j1 < (pass ? 1 : P->dirs); ++j1) {
 					const double w = coupling(P, i1, j1, &sh, h);
+					const double compliance = j2 == 0 ? normal_compliance : friction_compliance;
 					LINK_PUT(row_of(P, i1, j1), i1 == i2 && j1 == j2 ? w + compliance : w);
 				}
 			}
@@ -668,24 +670,29 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	// The friction LCP always has a solution, but its degeneracy (every unused friction
 	// direction of a sticking contact at w = 0) can defeat Lemke's tie-breaking in floating
 	// point: a false ray, or a residual above the limit. Each failure is retried from a cold
-	// start with the impulse block made positive definite by a compliance of
-	// POOL_LINK_REGULARIZATION (then 1000 times that): a contact yielding 1e-9 (1e-6) m/s per m/s
-	// of impulse, far below anything the step resolves. The last retry drops the alignment of
-	// the friction directions with the slips (the fixed directions of the 2012 work): a slip
-	// that barely exceeds POOL_LINK_ALIGN_SLIP puts a direction exactly along a contact velocity
-	// rounding cannot resolve, and the soak's rare failures with every compliance above (a
-	// ball rolling to within 1e-5 m/s while rubbing a neighbour) solve at once without it. That
-	// step's friction is then off its slip by at most pi / eta. Every attempt's residual is
-	// checked.
+	// start with a compliance of POOL_LINK_REGULARIZATION (then 1000 times that) on the
+	// diagonal: a contact yielding 1e-9 (1e-6) m/s per m/s of impulse, far below anything the
+	// step resolves. The friction directions take it first, alone, where the degeneracy is: a
+	// compliant normal lets its ball into what presses it by the compliance times the impulse,
+	// a ball on the cloth sinking at 1e-6 g dt (6e-8 m/s over a 6 ms step), and a cluster that
+	// needed it step after step (the soak's extreme_params seeds 44 and 48, every cushion
+	// friction 1) sank 1.5 nm, which putting the balls back onto the cloth turned into energy
+	// from nowhere. The whole impulse block takes it next (redundant normals, a ball pressed
+	// from several sides at once), and the last retry drops the alignment of the friction
+	// directions with the slips (the fixed directions of the 2012 work): a slip that barely
+	// exceeds POOL_LINK_ALIGN_SLIP puts a direction exactly along a contact velocity rounding
+	// cannot resolve, and the soak's rare failures with every compliance above (a ball rolling
+	// to within 1e-5 m/s while rubbing a neighbour) solve at once without it. That step's
+	// friction is then off its slip by at most pi / eta. Every attempt's residual is checked.
 	typedef struct retry {
-		double compliance;
+		double friction_compliance, normal_compliance;
 		int align;
 	} retry;
-	const retry ladder[] = {{0.0, options->align_friction},
-	                        {POOL_LINK_REGULARIZATION, options->align_friction},
-	                        {1e3 * POOL_LINK_REGULARIZATION, options->align_friction},
-	                        {0.0, 0}};
-	const size_t attempts = options->align_friction ? 4 : 3;
+	const double soft = POOL_LINK_REGULARIZATION, softer = 1e3 * POOL_LINK_REGULARIZATION;
+	const int align = options->align_friction;
+	const retry ladder[] = {{0.0, 0.0, align},       {soft, 0.0, align},       {softer, 0.0, align},
+	                        {soft, soft, align},     {softer, softer, align},  {0.0, 0.0, 0}};
+	const size_t attempts = sizeof ladder / sizeof ladder[0] - (options->align_friction ? 0 : 1);
 	pool_lemke_stats ls;
 	memset(&ls, 0, sizeof ls);
 	pool_lemke_status status = POOL_LEMKE_BAD_INPUT;
@@ -700,7 +707,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 			build_directions(&P, ladder[attempt].align);
 			build_vector(&P, dt);
 		}
-		build_matrix(&P, mass, ladder[attempt].compliance);
+		build_matrix(&P, mass, ladder[attempt].friction_compliance, ladder[attempt].normal_compliance);
 		if (attempt > 0)
 			for (int i = 0; i < P.L; ++i)
 				P.m.basis[i] = 0;

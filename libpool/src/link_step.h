@@ -37,7 +37,8 @@
 /// floating point (the random shots of test_random_shots and test_threads).
 #define POOL_LINK_RESIDUAL_MAX 1e-6
 
-/// Compliance added to the impulse block when a solve fails (link_step.c), in velocity units.
+/// Compliance added to the friction directions' diagonal when a solve fails, then to the whole
+/// impulse block's (link_step.c), in velocity units.
 #define POOL_LINK_REGULARIZATION 1e-9
 
 /// What one step did.
