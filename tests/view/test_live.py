@@ -13,6 +13,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import socket
 import struct
 import subprocess
@@ -177,6 +178,47 @@ class LiveTest(unittest.TestCase):
         for s in hostile:
             s.close()
         self.alive()
+
+    def test_first_shot_whole_when_lcm_is_slow_to_start(self):
+        # The LCM thread imports lcm and the types before it subscribes; on a loaded machine that
+        # took long enough for a client connected at "serving" to miss the first shot's table and
+        # first events (3 failures in about 115 runs). Types that take a second to import make it
+        # certain: the server announces itself only once it listens.
+        slow = work("slow_types")
+        shutil.rmtree(slow, ignore_errors=True)
+        shutil.copytree(os.path.join(ARGS.types_dir, "pool_lcm"), os.path.join(slow, "pool_lcm"))
+        init = os.path.join(slow, "pool_lcm", "__init__.py")
+        with open(init, encoding="utf-8") as f:
+            code = f.read()
+        with open(init, "w", encoding="utf-8") as f:
+            f.write("import time\ntime.sleep(1.0)\n" + code)
+        server = subprocess.Popen(
+            [sys.executable, os.path.join(ARGS.source_dir, "tools", "pool-view"), "--live",
+             "--port", "0", "--lcm-url", URL, "--types-dir", slow],
+            stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        try:
+            line = server.stderr.readline().decode()
+            m = re.search(r"serving http://127\.0\.0\.1:(\d+)/", line)
+            self.assertIsNotNone(m, line)
+            client = connect(f"ws://127.0.0.1:{m.group(1)}/stream", open_timeout=10, max_size=None)
+            result = self.publish_shot("slow_start")
+            hello, table, events, shot = self.receive_shot(client)
+            self.assertIsNotNone(table)
+            self.assertEqual([e["seq"] for e in events], list(range(len(result["events"]))))
+            self.assertEqual(shot["result"]["events"], result["events"])
+            client.close()
+        finally:
+            server.terminate()
+            server.wait(10)
+            server.stderr.close()
+
+    def test_bad_lcm_url_is_refused(self):
+        r = subprocess.run(
+            [sys.executable, os.path.join(ARGS.source_dir, "tools", "pool-view"), "--live",
+             "--port", "0", "--lcm-url", "nosuchprovider://x", "--types-dir", ARGS.types_dir],
+            capture_output=True, text=True, timeout=60)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("pool-view: --lcm-url: nosuchprovider://x", r.stderr)
 
     def test_page_follows_the_stream(self):
         from browser import Browser
