@@ -524,6 +524,7 @@ static void build_matrix(link_problem *P, double mass, double friction_complianc
 		}
 		double h[2][6];
 		impulse_column(P, i2, j2, mass, h);
+		const double compliance = j2 == 0 ? normal_compliance : friction_compliance; // its diagonal's
 		if (i2 != near_of) { // (a contact's columns are consecutive: its neighbours once)
 			near = near_contacts(P, i2);
 			near_of = i2;
@@ -534,7 +535,6 @@ static void build_matrix(link_problem *P, double mass, double friction_complianc
 				const link_shared sh = shared_sides(P, i1, i2);
 				for (int j1 = pass ? 0 : 1; j1 < (pass ? 1 : P->dirs); ++j1) {
 					const double w = coupling(P, i1, j1, &sh, h);
-					const double compliance = j2 == 0 ? normal_compliance : friction_compliance;
 					LINK_PUT(row_of(P, i1, j1), i1 == i2 && j1 == j2 ? w + compliance : w);
 				}
 			}
@@ -692,7 +692,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	const int align = options->align_friction;
 	const retry ladder[] = {{0.0, 0.0, align},       {soft, 0.0, align},       {softer, 0.0, align},
 	                        {soft, soft, align},     {softer, softer, align},  {0.0, 0.0, 0}};
-	const size_t attempts = sizeof ladder / sizeof ladder[0] - (options->align_friction ? 0 : 1);
+	const size_t attempts = sizeof ladder / sizeof ladder[0] - (align ? 0 : 1);
 	pool_lemke_stats ls;
 	memset(&ls, 0, sizeof ls);
 	pool_lemke_status status = POOL_LEMKE_BAD_INPUT;
