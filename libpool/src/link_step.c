@@ -676,7 +676,7 @@ pool_result pool_link_step_with(const pool_sim_def *def, pool_ball_state *s, int
 	// compliant normal lets its ball into what presses it by the compliance times the impulse,
 	// a ball on the cloth sinking at 1e-6 g dt (6e-8 m/s over a 6 ms step), and a cluster that
 	// needed it step after step (the soak's extreme_params seeds 44 and 48, every cushion
-	// friction 1) sank 1.5 nm, which putting the balls back onto the cloth turned into energy
+	// friction 1) sank 1.5 to 5.5 nm, which putting the balls back onto the cloth turned into energy
 	// from nowhere. The whole impulse block takes it next (redundant normals, a ball pressed
 	// from several sides at once), and the last retry drops the alignment of the friction
 	// directions with the slips (the fixed directions of the 2012 work): a slip that barely
